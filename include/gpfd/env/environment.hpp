@@ -1,0 +1,100 @@
+// env: the environment interface every benchmark implements, and the registry that makes
+// environments by name. No GP in this module.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "gpfd/util/rng.hpp"
+
+namespace gpfd::env {
+
+// Raw parameter values by name, as given in a config or on the command line (`k=v`).
+using Params = std::map<std::string, std::string>;
+
+// One parameter an environment takes: its name, default value (as text) and meaning.
+struct ParamSpec {
+  std::string name;
+  std::string defaultValue;
+  std::string meaning;
+};
+
+// A continuous box (one [low, high] per dimension) or a set of discrete choices. A discrete
+// action is passed to step() as its components (one component, the choice index, for a plain
+// discrete space; Tetris uses two: orientation and column).
+struct ActionSpace {
+  enum class Kind { Continuous, Discrete };
+  Kind kind = Kind::Continuous;
+  std::vector<double> low;   // Continuous: lower bound per dimension.
+  std::vector<double> high;  // Continuous: upper bound per dimension.
+  int choices = 0;           // Discrete: the number of choices of a one-component action.
+  std::size_t components = 1;  // Number of components in an action passed to step().
+
+  bool continuous() const { return kind == Kind::Continuous; }
+};
+
+struct StepResult {
+  double reward = 0.0;
+  bool terminated = false;  // A terminal state of the task (failure, goal, game over).
+  bool truncated = false;   // The time limit was reached; the state is not terminal.
+};
+
+// Contract: an Environment owns no global state, logs nothing in step(), and is used by one
+// thread at a time; make one instance per trial (see Registry::make).
+class Environment {
+ public:
+  virtual ~Environment() = default;
+
+  virtual std::string name() const = 0;
+  // Names of the state variables, in the order of state().
+  virtual const std::vector<std::string>& stateNames() const = 0;
+  std::size_t stateDim() const { return stateNames().size(); }
+  virtual ActionSpace actionSpace() const = 0;
+
+  // Starts an episode from the environment's start distribution.
+  virtual void reset(Rng& rng) = 0;
+  // The current state variables, stateDim() values, valid until the next call of a non-const
+  // member.
+  virtual std::span<const double> state() const = 0;
+  // Sets the state variables exactly (tests, replays); throws InputError on a wrong size or a
+  // state the environment cannot take.
+  virtual void setState(std::span<const double> state) = 0;
+  // Applies one action (continuous components are clipped to the bounds).
+  virtual StepResult step(std::span<const double> action) = 0;
+};
+
+using Factory = std::function<std::unique_ptr<Environment>(const Params&)>;
+
+// What the registry knows about one environment.
+struct EnvInfo {
+  std::string name;
+  std::string description;
+  std::vector<ParamSpec> params;
+  Factory make;
+};
+
+// Maps names to factories. The built-in environments are registered on first use; users add
+// their own with add() (see docs/environments.md).
+class Registry {
+ public:
+  static Registry& global();
+
+  // Throws InputError when the name is taken.
+  void add(EnvInfo info);
+  // Throws InputError naming the unknown environment (with the known names).
+  const EnvInfo& info(const std::string& name) const;
+  std::vector<std::string> names() const;
+  // Validates the parameter names against info(name).params (InputError on an unknown one) and
+  // makes a fresh instance.
+  std::unique_ptr<Environment> make(const std::string& name, const Params& params = {}) const;
+
+ private:
+  std::map<std::string, EnvInfo> entries_;
+};
+
+}  // namespace gpfd::env
