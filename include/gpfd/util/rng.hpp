@@ -8,6 +8,8 @@
 
 namespace gpfd {
 
+__extension__ typedef Uint128 Uint128;  // GCC/Clang extension, for Rng::below.
+
 // SplitMix64 step (Steele, Lea & Flood 2014, "Fast splittable pseudorandom number generators"):
 // a bijective 64-bit mixer, used to expand seeds and to hash seed tuples.
 constexpr std::uint64_t splitmix64(std::uint64_t& state) {
@@ -67,12 +69,12 @@ class Rng {
 
   // Uniform integer in [0, n), n > 0, without modulo bias (Lemire 2019).
   std::uint64_t below(std::uint64_t n) {
-    unsigned __int128 m = static_cast<unsigned __int128>((*this)()) * n;
+    Uint128 m = static_cast<Uint128>((*this)()) * n;
     auto low = static_cast<std::uint64_t>(m);
     if (low < n) {
       const std::uint64_t threshold = (0 - n) % n;
       while (low < threshold) {
-        m = static_cast<unsigned __int128>((*this)()) * n;
+        m = static_cast<Uint128>((*this)()) * n;
         low = static_cast<std::uint64_t>(m);
       }
     }
