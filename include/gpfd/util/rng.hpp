@@ -8,7 +8,7 @@
 
 namespace gpfd {
 
-__extension__ typedef Uint128 Uint128;  // GCC/Clang extension, for Rng::below.
+__extension__ typedef unsigned __int128 Uint128;  // GCC/Clang extension, for Rng::below.
 
 // SplitMix64 step (Steele, Lea & Flood 2014, "Fast splittable pseudorandom number generators"):
 // a bijective 64-bit mixer, used to expand seeds and to hash seed tuples.
