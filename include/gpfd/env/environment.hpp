@@ -30,10 +30,11 @@ struct ParamSpec {
 struct ActionSpace {
   enum class Kind { Continuous, Discrete };
   Kind kind = Kind::Continuous;
-  std::vector<double> low;   // Continuous: lower bound per dimension.
-  std::vector<double> high;  // Continuous: upper bound per dimension.
-  int choices = 0;           // Discrete: the number of choices of a one-component action.
-  std::size_t components = 1;  // Number of components in an action passed to step().
+  std::vector<double> low;         // Continuous: lower bound per dimension.
+  std::vector<double> high;        // Continuous: upper bound per dimension.
+  int choices = 0;                 // Discrete: the number of choices of a one-component action.
+  std::size_t components = 1;      // Number of components in an action passed to step().
+  std::vector<std::string> names;  // One name per component (CSV headers, listings).
 
   bool continuous() const { return kind == Kind::Continuous; }
 };
@@ -51,6 +52,9 @@ class Environment {
   virtual ~Environment() = default;
 
   virtual std::string name() const = 0;
+  // Every parameter of this instance with its resolved value (defaults filled in), as text that
+  // Registry::make accepts back.
+  virtual Params params() const = 0;
   // Names of the state variables, in the order of state().
   virtual const std::vector<std::string>& stateNames() const = 0;
   std::size_t stateDim() const { return stateNames().size(); }
@@ -65,7 +69,15 @@ class Environment {
   // state the environment cannot take.
   virtual void setState(std::span<const double> state) = 0;
   // Applies one action (continuous components are clipped to the bounds).
+  // A NaN component is taken as 0. A discrete component that is not one of the choices throws
+  // InputError. Stepping on after a terminal state is allowed (the dynamics simply continue) except
+  // where an environment documents otherwise.
   virtual StepResult step(std::span<const double> action) = 0;
+
+  // Writes a uniformly random legal action (actionSpace().components values) into `action`: uniform
+  // in the box for continuous spaces, a uniform choice for discrete ones. Environments whose legal
+  // actions depend on the state (Tetris) override it.
+  virtual void sampleAction(Rng& rng, std::span<double> action) const;
 };
 
 using Factory = std::function<std::unique_ptr<Environment>(const Params&)>;

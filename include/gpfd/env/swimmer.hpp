@@ -1,0 +1,77 @@
+// env: the n-segment swimmer in a viscous fluid (R. Coulom, PhD thesis 2002, appendix B), exactly
+// as fixed in BENCHMARKS.md.
+#pragma once
+
+#include <Eigen/Dense>
+#include <vector>
+
+#include "gpfd/env/environment.hpp"
+#include "gpfd/env/integrate.hpp"
+
+namespace gpfd::env {
+
+// Defaults marked (ours) are choices BENCHMARKS.md leaves open; docs/environments.md explains them.
+struct SwimmerConfig {
+  int segments = 3;                           // n >= 2 (the paper: 3 and 5).
+  Integrator integrator = Integrator::Euler;  // Coulom integrates with explicit Euler.
+  double dt = 0.1;                            // Control interval in seconds (ours).
+  int substeps = 10;                          // Integration steps per interval: h = 0.01 s (ours).
+  double maxTorque = 5.0;                     // u_j in [-maxTorque, maxTorque].
+  int horizon = 100;                          // Truncation after this many steps (ours); 0 = none.
+  double viscosity = 10.0;                    // Fluid viscosity k (0 = no drag, for tests).
+  double startAngleNoise = 0.1;               // Reset: th_i ~ U(-a, a) around 0, at rest (ours).
+
+  static SwimmerConfig fromParams(const Params& params);  // Throws InputError.
+  Params toParams() const;
+  static std::vector<ParamSpec> paramSpecs();
+};
+
+// State (dGx, dGy, th1, dth1, ..., thn, dthn): 2n + 2 values; velocity of the centre of mass in
+// m/s, segment angles in rad (wrapped into [-pi, pi]) and their rates in rad/s. Action: n - 1
+// joint torques. Reward per step: dGx * dt after the step (the distance swum along x).
+// Every segment has mass 1, length 1 and moment of inertia 1/12.
+class Swimmer final : public Environment {
+ public:
+  explicit Swimmer(SwimmerConfig config = {});
+
+  std::string name() const override { return "swimmer"; }
+  Params params() const override { return config_.toParams(); }
+  const std::vector<std::string>& stateNames() const override { return names_; }
+  ActionSpace actionSpace() const override;
+  void reset(Rng& rng) override;
+  std::span<const double> state() const override { return state_; }
+  void setState(std::span<const double> state) override;
+  StepResult step(std::span<const double> action) override;
+
+  const SwimmerConfig& config() const { return config_; }
+  int segments() const { return n_; }
+  // d/dt state at `state` (2n + 2 values) under joint torques `torque` (n - 1 values, used as
+  // given), written to `out` (2n + 2 values). Solves the linear system of BENCHMARKS.md.
+  void derivative(std::span<const double> state, std::span<const double> torque,
+                  std::span<double> out);
+
+ private:
+  void integrate(double h);
+
+  SwimmerConfig config_;
+  int n_;
+  std::vector<std::string> names_;
+  std::vector<double> state_;
+  std::vector<double> torque_;
+  int steps_ = 0;
+
+  // Constants of the body: mass, length and inertia per segment, and the coupling matrix
+  // couple_(i, j) = sum_k w_ik m_k (w_kj - wbar_j) with w_ij = 1 (j < i), 1/2 (j = i), 0 (j > i),
+  // wbar_j = sum_k m_k w_kj / M (from eliminating A''_0 and the internal forces).
+  std::vector<double> mass_, length_, inertia_, massWeight_;
+  double totalMass_ = 0.0;
+  Eigen::MatrixXd couple_;
+
+  // Scratch, sized once.
+  Eigen::MatrixXd system_;
+  Eigen::VectorXd rhs_, solution_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  std::vector<double> cos_, sin_, force_x_, force_y_, k1_, k2_, k3_, k4_, tmp_;
+};
+
+}  // namespace gpfd::env

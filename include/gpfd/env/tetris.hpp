@@ -1,0 +1,91 @@
+// env: Tetris as in the paper (12 x 8 board, 7 tetrominoes drawn uniformly), with the afterstates
+// that lambda-policy iteration needs and the Bertsekas-Ioffe feature set.
+#pragma once
+
+#include <vector>
+
+#include "gpfd/env/environment.hpp"
+#include "gpfd/env/tetris_board.hpp"
+
+namespace gpfd::env {
+
+struct TetrisConfig {
+  int rows = 12;  // The paper: 12 x 8; the literature's standard: 20 x 10.
+  int cols = 8;
+  TetrisFeatures state = TetrisFeatures::Paper;
+  int maxSteps = 0;  // Truncation after this many pieces; 0 = none (ours).
+
+  static TetrisConfig fromParams(const Params& params);  // Throws InputError.
+  Params toParams() const;
+  static std::vector<ParamSpec> paramSpecs();
+};
+
+// One legal placement of the current piece and what it leads to.
+struct TetrisPlacement {
+  int orientation = 0;
+  int column = 0;       // Leftmost column of the piece.
+  int rowsRemoved = 0;  // The reward of this placement.
+  bool gameOver = false;
+};
+
+// All placements of the current piece; features holds placements.size() rows of featureDim
+// values: the state variables of the board after the placement (in the environment's `state`
+// layout; for the paper's layout the last value is the piece just placed, since the next one is
+// not yet drawn).
+struct TetrisAfterstates {
+  std::vector<TetrisPlacement> placements;
+  std::vector<double> features;
+  std::size_t featureDim = 0;
+
+  std::span<const double> featuresOf(std::size_t i) const {
+    return {features.data() + i * featureDim, featureDim};
+  }
+};
+
+// State: the 2c + 2 variables of `state` (TetrisFeatures). Action: (orientation, column), an
+// orientation index of orientationsOf(piece()) and the piece's leftmost column. Reward: rows
+// removed. The next piece is drawn from an engine seeded by reset(). After game over, step()
+// changes nothing and reports terminated with reward 0.
+class Tetris final : public Environment {
+ public:
+  explicit Tetris(TetrisConfig config = {});
+
+  std::string name() const override { return "tetris"; }
+  Params params() const override { return config_.toParams(); }
+  const std::vector<std::string>& stateNames() const override { return names_; }
+  ActionSpace actionSpace() const override;
+  void reset(Rng& rng) override;
+  std::span<const double> state() const override { return state_; }
+  // The state variables do not determine a board: this builds the canonical board that has them
+  // (columns filled up to their heights, the holes carved from the bottom row up, left to right)
+  // and throws InputError when no board has them. Bertsekas layout: the piece is kept.
+  void setState(std::span<const double> state) override;
+  StepResult step(std::span<const double> action) override;
+  void sampleAction(Rng& rng, std::span<double> action) const override;
+
+  const TetrisConfig& config() const { return config_; }
+  const TetrisBoard& board() const { return board_; }
+  int piece() const { return piece_; }
+  bool gameOver() const { return gameOver_; }
+  // Sets the board and the current piece exactly (tests, replays); the board must have the
+  // configured size.
+  void setBoard(const TetrisBoard& board, int piece);
+  // Every legal placement of the current piece, with its afterstate (reuses `out`'s storage).
+  void afterstates(TetrisAfterstates& out) const;
+  // Throws InputError unless (orientation, column) is a legal placement of the current piece.
+  void checkAction(std::span<const double> action) const;
+
+ private:
+  void refreshState();
+
+  TetrisConfig config_;
+  std::vector<std::string> names_;
+  TetrisBoard board_;
+  Rng pieces_;
+  int piece_ = 0;
+  bool gameOver_ = false;
+  int steps_ = 0;
+  std::vector<double> state_;
+};
+
+}  // namespace gpfd::env

@@ -1,0 +1,243 @@
+#include "gpfd/env/swimmer.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "gpfd/env/angles.hpp"
+#include "gpfd/env/params.hpp"
+#include "gpfd/util/error.hpp"
+
+namespace gpfd::env {
+
+SwimmerConfig SwimmerConfig::fromParams(const Params& params) {
+  const ParamReader in("swimmer", params);
+  SwimmerConfig c;
+  c.segments = in.integer("segments", c.segments, 2, 1000);
+  c.integrator = integratorFromName(in.choice("integrator", "euler", {"euler", "rk4"}));
+  c.dt = in.positive("dt", c.dt);
+  c.substeps = in.integer("substeps", c.substeps, 1, 1000000);
+  c.maxTorque = in.positive("max_torque", c.maxTorque);
+  c.horizon = in.integer("horizon", c.horizon, 0, 1000000000);
+  c.viscosity = in.real("viscosity", c.viscosity, 0.0, 1e9);
+  c.startAngleNoise = in.real("start_angle_noise", c.startAngleNoise, 0.0, 3.141592653589793);
+  return c;
+}
+
+Params SwimmerConfig::toParams() const {
+  return {{"segments", std::to_string(segments)},
+          {"integrator", integratorName(integrator)},
+          {"dt", numberText(dt)},
+          {"substeps", std::to_string(substeps)},
+          {"max_torque", numberText(maxTorque)},
+          {"horizon", std::to_string(horizon)},
+          {"viscosity", numberText(viscosity)},
+          {"start_angle_noise", numberText(startAngleNoise)}};
+}
+
+std::vector<ParamSpec> SwimmerConfig::paramSpecs() {
+  const SwimmerConfig d;
+  return {
+      {"segments", std::to_string(d.segments),
+       "number of segments n >= 2 (2n + 2 state variables)"},
+      {"integrator", "euler", "euler (Coulom) | rk4"},
+      {"dt", numberText(d.dt), "control interval in seconds; the torques are held over it"},
+      {"substeps", std::to_string(d.substeps),
+       "integration steps per control interval; angles wrapped after each"},
+      {"max_torque", numberText(d.maxTorque),
+       "joint torque bound: u_j in [-max_torque, max_torque]"},
+      {"horizon", std::to_string(d.horizon), "time limit in steps (truncation); 0 = none"},
+      {"viscosity", numberText(d.viscosity), "fluid viscosity k of the normal drag"},
+      {"start_angle_noise", numberText(d.startAngleNoise),
+       "reset: at rest, each th_i ~ U(-a, a) (a = this value)"},
+  };
+}
+
+Swimmer::Swimmer(SwimmerConfig config) : config_(config), n_(config.segments) {
+  if (n_ < 2) throw InputError("the swimmer needs at least 2 segments", "swimmer.segments");
+  const auto n = static_cast<std::size_t>(n_);
+  names_ = {"dGx", "dGy"};
+  for (int i = 1; i <= n_; ++i) {
+    names_.push_back(fmt::format("th{}", i));
+    names_.push_back(fmt::format("dth{}", i));
+  }
+  state_.assign(2 * n + 2, 0.0);
+  torque_.assign(n - 1, 0.0);
+  mass_.assign(n, 1.0);
+  length_.assign(n, 1.0);
+  inertia_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) inertia_[i] = mass_[i] * length_[i] * length_[i] / 12.0;
+  totalMass_ = 0.0;
+  for (double m : mass_) totalMass_ += m;
+  // w(i, j): weight of joint-acceleration term j in the centre acceleration of segment i.
+  const auto w = [](std::size_t i, std::size_t j) { return j < i ? 1.0 : (j == i ? 0.5 : 0.0); };
+  std::vector<double> meanWeight(n, 0.0);
+  for (std::size_t j = 0; j < n; ++j) {
+    for (std::size_t k = 0; k < n; ++k) meanWeight[j] += mass_[k] * w(k, j);
+    meanWeight[j] /= totalMass_;
+  }
+  massWeight_.assign(n, 0.0);
+  couple_.setZero(n_, n_);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t k = 0; k < n; ++k) {
+      massWeight_[i] += w(i, k) * mass_[k];
+      for (std::size_t j = 0; j < n; ++j) {
+        couple_(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) +=
+            w(i, k) * mass_[k] * (w(k, j) - meanWeight[j]);
+      }
+    }
+  }
+  system_.setZero(n_, n_);
+  rhs_.setZero(n_);
+  solution_.setZero(n_);
+  lu_ = Eigen::PartialPivLU<Eigen::MatrixXd>(n_);
+  for (auto* v : {&cos_, &sin_, &force_x_, &force_y_}) v->assign(n, 0.0);
+  for (auto* v : {&k1_, &k2_, &k3_, &k4_, &tmp_}) v->assign(2 * n + 2, 0.0);
+}
+
+ActionSpace Swimmer::actionSpace() const {
+  ActionSpace space;
+  space.components = static_cast<std::size_t>(n_ - 1);
+  space.low.assign(space.components, -config_.maxTorque);
+  space.high.assign(space.components, config_.maxTorque);
+  for (int j = 1; j < n_; ++j) space.names.push_back(fmt::format("u{}", j));
+  return space;
+}
+
+void Swimmer::reset(Rng& rng) {
+  std::fill(state_.begin(), state_.end(), 0.0);
+  for (int i = 0; i < n_; ++i) {
+    state_[static_cast<std::size_t>(2 + 2 * i)] =
+        rng.uniform(-config_.startAngleNoise, config_.startAngleNoise);
+  }
+  steps_ = 0;
+}
+
+void Swimmer::setState(std::span<const double> state) {
+  if (state.size() != state_.size()) {
+    throw InputError(fmt::format("swimmer with {} segments takes {} state variables, got {}", n_,
+                                 state_.size(), state.size()),
+                     "swimmer state");
+  }
+  for (double v : state) {
+    if (!std::isfinite(v)) throw InputError("swimmer state must be finite", "swimmer state");
+  }
+  std::copy(state.begin(), state.end(), state_.begin());
+  steps_ = 0;
+}
+
+void Swimmer::derivative(std::span<const double> s, std::span<const double> torque,
+                         std::span<double> out) {
+  const auto n = static_cast<std::size_t>(n_);
+  const double k = config_.viscosity;
+  for (std::size_t i = 0; i < n; ++i) {
+    cos_[i] = std::cos(s[2 + 2 * i]);
+    sin_[i] = std::sin(s[2 + 2 * i]);
+  }
+  // Centre velocities G'_i relative to A'_0 = 0, then shifted so that sum m_i G'_i / M = G'.
+  double ax = 0.0, ay = 0.0, meanX = 0.0, meanY = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double rate = length_[i] * s[3 + 2 * i];
+    const double nextX = ax - rate * sin_[i], nextY = ay + rate * cos_[i];
+    force_x_[i] = 0.5 * (ax + nextX);  // G'_i for now; turned into the drag force below.
+    force_y_[i] = 0.5 * (ay + nextY);
+    meanX += mass_[i] * force_x_[i];
+    meanY += mass_[i] * force_y_[i];
+    ax = nextX;
+    ay = nextY;
+  }
+  const double shiftX = s[0] - meanX / totalMass_, shiftY = s[1] - meanY / totalMass_;
+  // Normal drag F_i = -k l_i (G'_i . n_i) n_i, n_i = (-sin, cos).
+  double sumFx = 0.0, sumFy = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double vx = force_x_[i] + shiftX, vy = force_y_[i] + shiftY;
+    const double normal = -k * length_[i] * (-vx * sin_[i] + vy * cos_[i]);
+    force_x_[i] = -normal * sin_[i];
+    force_y_[i] = normal * cos_[i];
+    sumFx += force_x_[i];
+    sumFy += force_y_[i];
+  }
+  // Translation: M G'' = sum F_i (the free tail, f_n = 0).
+  const double gxx = sumFx / totalMass_, gyy = sumFy / totalMass_;
+  // Rotation rows, with G'' substituted: see the derivation in docs/environments.md.
+  double prefixX = 0.0, prefixY = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto ii = static_cast<Eigen::Index>(i);
+    const double li = length_[i], ci = cos_[i], si = sin_[i];
+    const double halfX = prefixX + 0.5 * force_x_[i], halfY = prefixY + 0.5 * force_y_[i];
+    prefixX += force_x_[i];
+    prefixY += force_y_[i];
+    const double dth = s[3 + 2 * i];
+    double rhs = -k * dth * li * li * li / 12.0;
+    if (i > 0) rhs += torque[i - 1];
+    if (i + 1 < n) rhs -= torque[i];
+    rhs += li * massWeight_[i] * (ci * gyy - si * gxx);
+    rhs -= li * (ci * halfY - si * halfX);
+    double centripetal = 0.0;
+    for (std::size_t j = 0; j < n; ++j) {
+      const auto jj = static_cast<Eigen::Index>(j);
+      const double lj = length_[j], dthj = s[3 + 2 * j];
+      const double g = couple_(ii, jj);
+      centripetal += g * lj * dthj * dthj * (ci * sin_[j] - si * cos_[j]);
+      system_(ii, jj) = -li * lj * g * (ci * cos_[j] + si * sin_[j]);
+    }
+    system_(ii, ii) += inertia_[i];
+    rhs -= li * centripetal;
+    rhs_(ii) = rhs;
+  }
+  lu_.compute(system_);
+  solution_.noalias() = lu_.solve(rhs_);
+  out[0] = gxx;
+  out[1] = gyy;
+  for (std::size_t i = 0; i < n; ++i) {
+    out[2 + 2 * i] = s[3 + 2 * i];
+    out[3 + 2 * i] = solution_(static_cast<Eigen::Index>(i));
+  }
+}
+
+void Swimmer::integrate(double h) {
+  const std::size_t dim = state_.size();
+  if (config_.integrator == Integrator::Euler) {
+    derivative(state_, torque_, k1_);
+    for (std::size_t i = 0; i < dim; ++i) state_[i] += h * k1_[i];
+  } else {
+    const double half = h / 2.0;
+    derivative(state_, torque_, k1_);
+    for (std::size_t i = 0; i < dim; ++i) tmp_[i] = state_[i] + half * k1_[i];
+    derivative(tmp_, torque_, k2_);
+    for (std::size_t i = 0; i < dim; ++i) tmp_[i] = state_[i] + half * k2_[i];
+    derivative(tmp_, torque_, k3_);
+    for (std::size_t i = 0; i < dim; ++i) tmp_[i] = state_[i] + h * k3_[i];
+    derivative(tmp_, torque_, k4_);
+    const double sixth = h / 6.0;
+    for (std::size_t i = 0; i < dim; ++i) {
+      state_[i] += sixth * (k1_[i] + 2.0 * k2_[i] + 2.0 * k3_[i] + k4_[i]);
+    }
+  }
+  for (int i = 0; i < n_; ++i) {
+    double& th = state_[static_cast<std::size_t>(2 + 2 * i)];
+    th = wrapAngle(th);
+  }
+}
+
+StepResult Swimmer::step(std::span<const double> action) {
+  if (action.size() != torque_.size()) {
+    throw InputError(fmt::format("swimmer with {} segments takes {} action components, got {}", n_,
+                                 torque_.size(), action.size()),
+                     "swimmer action");
+  }
+  for (std::size_t j = 0; j < torque_.size(); ++j) {
+    torque_[j] =
+        std::isnan(action[j]) ? 0.0 : std::clamp(action[j], -config_.maxTorque, config_.maxTorque);
+  }
+  const double h = config_.dt / config_.substeps;
+  for (int i = 0; i < config_.substeps; ++i) integrate(h);
+  ++steps_;
+  StepResult result;
+  result.reward = state_[0] * config_.dt;
+  result.truncated = config_.horizon > 0 && steps_ >= config_.horizon;
+  return result;
+}
+
+}  // namespace gpfd::env

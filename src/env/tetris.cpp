@@ -1,0 +1,225 @@
+#include "gpfd/env/tetris.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "gpfd/env/params.hpp"
+#include "gpfd/util/error.hpp"
+
+namespace gpfd::env {
+
+TetrisConfig TetrisConfig::fromParams(const Params& params) {
+  const ParamReader in("tetris", params);
+  TetrisConfig c;
+  c.rows = in.integer("rows", c.rows, 4, TetrisBoard::kMaxRows);
+  c.cols = in.integer("cols", c.cols, 4, TetrisBoard::kMaxCols);
+  c.state = in.choice("state", "paper", {"paper", "bertsekas"}) == "bertsekas"
+                ? TetrisFeatures::Bertsekas
+                : TetrisFeatures::Paper;
+  c.maxSteps = in.integer("max_steps", c.maxSteps, 0, 1000000000);
+  return c;
+}
+
+Params TetrisConfig::toParams() const {
+  return {{"rows", std::to_string(rows)},
+          {"cols", std::to_string(cols)},
+          {"state", state == TetrisFeatures::Bertsekas ? "bertsekas" : "paper"},
+          {"max_steps", std::to_string(maxSteps)}};
+}
+
+std::vector<ParamSpec> TetrisConfig::paramSpecs() {
+  const TetrisConfig d;
+  return {
+      {"rows", std::to_string(d.rows), "board height (the paper: 12; the literature: 20)"},
+      {"cols", std::to_string(d.cols), "board width (the paper: 8; the literature: 10)"},
+      {"state", "paper",
+       "paper (heights, |differences|, max height, holes, piece 0-6 = IOTSZLJ) | bertsekas (the "
+       "same with a constant 1 instead of the piece)"},
+      {"max_steps", std::to_string(d.maxSteps), "time limit in pieces (truncation); 0 = none"},
+  };
+}
+
+Tetris::Tetris(TetrisConfig config) : config_(config), board_(config.rows, config.cols) {
+  for (int c = 1; c <= config_.cols; ++c) names_.push_back(fmt::format("h{}", c));
+  for (int c = 1; c < config_.cols; ++c) names_.push_back(fmt::format("d{}", c));
+  names_.push_back("max_height");
+  names_.push_back("holes");
+  names_.push_back(config_.state == TetrisFeatures::Paper ? "piece" : "const");
+  state_.assign(names_.size(), 0.0);
+  refreshState();
+}
+
+ActionSpace Tetris::actionSpace() const {
+  ActionSpace space;
+  space.kind = ActionSpace::Kind::Discrete;
+  space.components = 2;
+  space.names = {"orientation", "column"};
+  return space;
+}
+
+void Tetris::refreshState() { board_.features(config_.state, piece_, state_.data()); }
+
+void Tetris::reset(Rng& rng) {
+  pieces_.reseed(rng());
+  board_.clear();
+  piece_ = static_cast<int>(pieces_.below(kPieceCount));
+  gameOver_ = false;
+  steps_ = 0;
+  refreshState();
+}
+
+void Tetris::setBoard(const TetrisBoard& board, int piece) {
+  if (board.rows() != config_.rows || board.cols() != config_.cols) {
+    throw InputError(fmt::format("the board must be {}x{}, got {}x{}", config_.rows, config_.cols,
+                                 board.rows(), board.cols()),
+                     "tetris board");
+  }
+  if (piece < 0 || piece >= kPieceCount) {
+    throw InputError(fmt::format("a piece is 0..6, got {}", piece), "tetris piece");
+  }
+  board_ = board;
+  piece_ = piece;
+  gameOver_ = false;
+  steps_ = 0;
+  refreshState();
+}
+
+void Tetris::setState(std::span<const double> state) {
+  const int cols = config_.cols, rows = config_.rows;
+  if (state.size() != state_.size()) {
+    throw InputError(
+        fmt::format("tetris takes {} state variables, got {}", state_.size(), state.size()),
+        "tetris state");
+  }
+  const auto integerAt = [&](std::size_t i, int lo, int hi) {
+    const double v = state[i];
+    if (!(v >= lo && v <= hi) || v != std::floor(v)) {
+      throw InputError(
+          fmt::format("{} must be an integer in [{}, {}], got {}", names_[i], lo, hi, v),
+          "tetris state");
+    }
+    return static_cast<int>(v);
+  };
+  std::vector<int> heights(static_cast<std::size_t>(cols));
+  int maxHeight = 0, carvable = 0;
+  for (int c = 0; c < cols; ++c) {
+    heights[static_cast<std::size_t>(c)] = integerAt(static_cast<std::size_t>(c), 0, rows);
+    maxHeight = std::max(maxHeight, heights[static_cast<std::size_t>(c)]);
+    carvable += std::max(0, heights[static_cast<std::size_t>(c)] - 1);
+  }
+  for (int c = 0; c + 1 < cols; ++c) {
+    const int d = integerAt(static_cast<std::size_t>(cols + c), 0, rows);
+    if (d !=
+        std::abs(heights[static_cast<std::size_t>(c)] - heights[static_cast<std::size_t>(c + 1)])) {
+      throw InputError(fmt::format("{} must equal |h{} - h{}|",
+                                   names_[static_cast<std::size_t>(cols + c)], c + 1, c + 2),
+                       "tetris state");
+    }
+  }
+  if (integerAt(static_cast<std::size_t>(2 * cols - 1), 0, rows) != maxHeight) {
+    throw InputError("max_height must equal the largest height", "tetris state");
+  }
+  const int holes = integerAt(static_cast<std::size_t>(2 * cols), 0, carvable);
+  int piece = piece_;
+  if (config_.state == TetrisFeatures::Paper) {
+    piece = integerAt(static_cast<std::size_t>(2 * cols + 1), 0, kPieceCount - 1);
+  } else if (state[static_cast<std::size_t>(2 * cols + 1)] != 1.0) {
+    throw InputError("const must be 1", "tetris state");
+  }
+  TetrisBoard board(rows, cols);
+  for (int c = 0; c < cols; ++c) {
+    for (int r = 0; r < heights[static_cast<std::size_t>(c)]; ++r) board.set(r, c, true);
+  }
+  int carved = 0;
+  for (int r = 0; r < rows && carved < holes; ++r) {
+    for (int c = 0; c < cols && carved < holes; ++c) {
+      if (r < heights[static_cast<std::size_t>(c)] - 1) {
+        board.set(r, c, false);
+        ++carved;
+      }
+    }
+  }
+  setBoard(board, piece);
+}
+
+void Tetris::checkAction(std::span<const double> action) const {
+  if (action.size() != 2) {
+    throw InputError(fmt::format("tetris takes 2 action components (orientation, column), got {}",
+                                 action.size()),
+                     "tetris action");
+  }
+  const auto orientations = orientationsOf(piece_);
+  const double o = action[0], c = action[1];
+  if (!(o >= 0 && o < static_cast<double>(orientations.size())) || o != std::floor(o)) {
+    throw InputError(
+        fmt::format("piece {} has orientations 0..{}, got {}",
+                    kPieceLetters[static_cast<std::size_t>(piece_)], orientations.size() - 1, o),
+        "tetris action");
+  }
+  const int width = orientations[static_cast<std::size_t>(o)].width;
+  if (!(c >= 0 && c <= config_.cols - width) || c != std::floor(c)) {
+    throw InputError(
+        fmt::format("orientation {} of piece {} fits columns 0..{}, got {}", o,
+                    kPieceLetters[static_cast<std::size_t>(piece_)], config_.cols - width, c),
+        "tetris action");
+  }
+}
+
+StepResult Tetris::step(std::span<const double> action) {
+  StepResult result;
+  if (gameOver_) {
+    result.terminated = true;
+    return result;
+  }
+  checkAction(action);
+  const DropOutcome outcome =
+      board_.drop(piece_, static_cast<int>(action[0]), static_cast<int>(action[1]));
+  ++steps_;
+  result.reward = outcome.rowsRemoved;
+  gameOver_ = outcome.gameOver;
+  result.terminated = gameOver_;
+  if (!gameOver_) piece_ = static_cast<int>(pieces_.below(kPieceCount));
+  result.truncated = config_.maxSteps > 0 && steps_ >= config_.maxSteps;
+  refreshState();
+  return result;
+}
+
+void Tetris::sampleAction(Rng& rng, std::span<double> action) const {
+  auto pick =
+      static_cast<int>(rng.below(static_cast<std::uint64_t>(placementCount(piece_, config_.cols))));
+  const auto orientations = orientationsOf(piece_);
+  for (std::size_t o = 0; o < orientations.size(); ++o) {
+    const int columns = config_.cols - orientations[o].width + 1;
+    if (pick < columns) {
+      action[0] = static_cast<double>(o);
+      action[1] = pick;
+      return;
+    }
+    pick -= columns;
+  }
+}
+
+void Tetris::afterstates(TetrisAfterstates& out) const {
+  const int count = placementCount(piece_, config_.cols);
+  const std::size_t dim = state_.size();
+  out.featureDim = dim;
+  out.placements.resize(static_cast<std::size_t>(count));
+  out.features.resize(static_cast<std::size_t>(count) * dim);
+  std::array<int, TetrisBoard::kMaxCols> heights{};
+  board_.heights(heights.data());
+  const auto orientations = orientationsOf(piece_);
+  std::size_t i = 0;
+  for (std::size_t o = 0; o < orientations.size(); ++o) {
+    const int columns = config_.cols - orientations[o].width + 1;
+    for (int c = 0; c < columns; ++c, ++i) {
+      TetrisBoard after = board_;
+      const DropOutcome outcome = after.drop(piece_, static_cast<int>(o), c, heights.data());
+      out.placements[i] = {static_cast<int>(o), c, outcome.rowsRemoved, outcome.gameOver};
+      after.features(config_.state, piece_, out.features.data() + i * dim);
+    }
+  }
+}
+
+}  // namespace gpfd::env
