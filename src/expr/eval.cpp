@@ -5,9 +5,12 @@ namespace {
 
 double walk(const Node* node, const double* state) {
   switch (node->op) {
-    case Op::Const: return node->value;
-    case Op::Var: return protect::input(state[node->var]);
-    default: break;
+    case Op::Const:
+      return node->value;
+    case Op::Var:
+      return protect::input(state[node->var]);
+    default:
+      break;
   }
   const Node* first = node + 1;
   if (arity(node->op) == 1) return apply(node->op, walk(first, state));

@@ -16,9 +16,9 @@ namespace gpfd::expr {
 // first child starts at i + 1, each next child right after the previous child's subtree.
 struct Node {
   Op op = Op::Const;
-  std::uint16_t var = 0;      // Op::Var: the state variable's index.
-  std::uint32_t length = 1;   // Number of nodes in the subtree rooted here.
-  double value = 0.0;         // Op::Const: the constant's value (always finite).
+  std::uint16_t var = 0;     // Op::Var: the state variable's index.
+  std::uint32_t length = 1;  // Number of nodes in the subtree rooted here.
+  double value = 0.0;        // Op::Const: the constant's value (always finite).
 
   static Node constant(double v) { return {Op::Const, 0, 1, v}; }
   static Node variable(int index) { return {Op::Var, static_cast<std::uint16_t>(index), 1, 0.0}; }

@@ -53,12 +53,12 @@ struct OpInfo {
 };
 
 inline constexpr OpInfo kOpInfo[kOpCount] = {
-    {"const", "const", 0, 0}, {"var", "var", 0, 0},     {"add", "+", 2, 1},
-    {"sub", "-", 2, 1},       {"mul", "*", 2, 2},       {"div", "/", 2, 2},
-    {"min", "min", 2, 0},     {"max", "max", 2, 0},     {"absdiff", "absdiff", 2, 0},
-    {"sin", "sin", 1, 0},     {"cos", "cos", 1, 0},     {"sqrt", "sqrt", 1, 0},
-    {"neg", "neg", 1, 0},     {"abs", "abs", 1, 0},     {"exp", "exp", 1, 0},
-    {"log", "log", 1, 0},     {"tanh", "tanh", 1, 0},   {"square", "square", 1, 0},
+    {"const", "const", 0, 0}, {"var", "var", 0, 0},   {"add", "+", 2, 1},
+    {"sub", "-", 2, 1},       {"mul", "*", 2, 2},     {"div", "/", 2, 2},
+    {"min", "min", 2, 0},     {"max", "max", 2, 0},   {"absdiff", "absdiff", 2, 0},
+    {"sin", "sin", 1, 0},     {"cos", "cos", 1, 0},   {"sqrt", "sqrt", 1, 0},
+    {"neg", "neg", 1, 0},     {"abs", "abs", 1, 0},   {"exp", "exp", 1, 0},
+    {"log", "log", 1, 0},     {"tanh", "tanh", 1, 0}, {"square", "square", 1, 0},
 };
 
 constexpr const OpInfo& info(Op op) { return kOpInfo[static_cast<int>(op)]; }
@@ -98,30 +98,48 @@ inline double square(double a) { return saturate(a * a); }
 // Applies a unary operator under the protected semantics.
 inline double apply(Op op, double a) {
   switch (op) {
-    case Op::Sin: return std::sin(a);
-    case Op::Cos: return std::cos(a);
-    case Op::Sqrt: return protect::sqrt(a);
-    case Op::Neg: return -a;
-    case Op::Abs: return std::fabs(a);
-    case Op::Exp: return protect::exp(a);
-    case Op::Log: return protect::log(a);
-    case Op::Tanh: return std::tanh(a);
-    case Op::Square: return protect::square(a);
-    default: return std::numeric_limits<double>::quiet_NaN();
+    case Op::Sin:
+      return std::sin(a);
+    case Op::Cos:
+      return std::cos(a);
+    case Op::Sqrt:
+      return protect::sqrt(a);
+    case Op::Neg:
+      return -a;
+    case Op::Abs:
+      return std::fabs(a);
+    case Op::Exp:
+      return protect::exp(a);
+    case Op::Log:
+      return protect::log(a);
+    case Op::Tanh:
+      return std::tanh(a);
+    case Op::Square:
+      return protect::square(a);
+    default:
+      return std::numeric_limits<double>::quiet_NaN();
   }
 }
 
 // Applies a binary operator under the protected semantics.
 inline double apply(Op op, double a, double b) {
   switch (op) {
-    case Op::Add: return protect::add(a, b);
-    case Op::Sub: return protect::sub(a, b);
-    case Op::Mul: return protect::mul(a, b);
-    case Op::Div: return protect::div(a, b);
-    case Op::Min: return protect::min(a, b);
-    case Op::Max: return protect::max(a, b);
-    case Op::AbsDiff: return protect::absdiff(a, b);
-    default: return std::numeric_limits<double>::quiet_NaN();
+    case Op::Add:
+      return protect::add(a, b);
+    case Op::Sub:
+      return protect::sub(a, b);
+    case Op::Mul:
+      return protect::mul(a, b);
+    case Op::Div:
+      return protect::div(a, b);
+    case Op::Min:
+      return protect::min(a, b);
+    case Op::Max:
+      return protect::max(a, b);
+    case Op::AbsDiff:
+      return protect::absdiff(a, b);
+    default:
+      return std::numeric_limits<double>::quiet_NaN();
   }
 }
 

@@ -1,0 +1,106 @@
+// gp: the generational evolution loop of the paper (section 4): elitism, tournament selection,
+// the five operators with the paper's probabilities, and a size penalty; fitness maximised.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "gpfd/gp/evaluator.hpp"
+#include "gpfd/gp/search_space.hpp"
+#include "gpfd/util/rng.hpp"
+
+namespace gpfd::gp {
+
+// Defaults are the paper's: crossover 0.7, of which 1/6 feature-list crossover; the remaining 0.3
+// to node mutation, tree mutation and shrinkage in the ratio 2 : 1 : 1; 10% elitism.
+struct GpConfig {
+  int population = 100;
+  int generations = 50;
+  double crossoverRate = 0.7;
+  double listCrossoverShare = 1.0 / 6.0;
+  double nodeMutationWeight = 2.0;
+  double treeMutationWeight = 1.0;
+  double shrinkageWeight = 1.0;
+  double elitism = 0.1;  // Fraction of the population copied unchanged (rounded).
+  int tournamentSize = 3;
+  double sizePenalty = 0.0;  // Subtracted per node from the raw fitness.
+  std::uint64_t seed = 1;
+};
+
+// Throws InputError naming the first out-of-range field.
+void validate(const GpConfig& config);
+
+enum class Operator {
+  SubtreeCrossover,
+  FeatureListCrossover,
+  NodeMutation,
+  TreeMutation,
+  Shrinkage
+};
+inline constexpr int kOperatorCount = 5;
+const char* operatorName(Operator op);
+
+// Probabilities of the operators, in the order of Operator, from the config.
+std::vector<double> operatorProbabilities(const GpConfig& config);
+
+struct Individual {
+  expr::Genome genome;
+  double rawFitness = 0.0;  // As the evaluator returned it (non-finite -> -inf).
+  double fitness = 0.0;     // rawFitness minus the size penalty; what selection uses.
+};
+
+struct GenerationStats {
+  int generation = 0;
+  double best = 0.0;  // Penalised fitness of the best individual.
+  double mean = 0.0;  // Over the individuals with a finite fitness.
+  double median = 0.0;
+  double meanSize = 0.0;      // Nodes per individual.
+  double meanFeatures = 0.0;  // Features per individual.
+  int evaluations = 0;        // Genomes sent to the evaluator this generation.
+  int invalid = 0;            // Individuals with a non-finite fitness.
+  double seconds = 0.0;       // Wall time of the generation.
+  Individual bestIndividual;
+};
+
+// Contract: the run is a pure function of (config, space, fitness); evaluation seeds are
+// deriveSeed(config.seed, kEvaluationStream, generation, index).
+class Evolution {
+ public:
+  static constexpr std::uint64_t kVariationStream = 0;
+  static constexpr std::uint64_t kEvaluationStream = 1;
+
+  Evolution(GpConfig config, SearchSpace space, Evaluator& evaluator);
+
+  // Creates and evaluates generation 0.
+  GenerationStats initialize();
+  // Breeds and evaluates the next generation.
+  GenerationStats step();
+  // initialize() then step() until config.generations generations exist (0 .. generations - 1);
+  // `onGeneration` sees each generation's statistics and may return false to stop early.
+  void run(const std::function<bool(const GenerationStats&)>& onGeneration);
+
+  int generation() const { return generation_; }
+  const std::vector<Individual>& population() const { return population_; }
+  const Individual& best() const;  // Best individual of the current population.
+  const GpConfig& config() const { return config_; }
+  const SearchSpace& space() const { return space_; }
+  // Operator applications so far, in the order of Operator (for frequency checks).
+  const std::vector<long>& operatorCounts() const { return operatorCounts_; }
+
+ private:
+  const Individual& tournament();
+  std::vector<expr::Genome> breed(std::size_t count);
+  // Evaluates population_[from, end) and computes the statistics.
+  GenerationStats evaluateFrom(std::size_t from, double startSeconds);
+
+  GpConfig config_;
+  SearchSpace space_;
+  Evaluator& evaluator_;
+  Rng rng_;
+  int generation_ = -1;
+  std::vector<Individual> population_;
+  std::vector<long> operatorCounts_ = std::vector<long>(kOperatorCount, 0);
+};
+
+}  // namespace gpfd::gp

@@ -1,0 +1,205 @@
+#include "gpfd/gp/evolution.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "gpfd/gp/init.hpp"
+#include "gpfd/gp/operators.hpp"
+#include "gpfd/util/error.hpp"
+
+namespace gpfd::gp {
+namespace {
+
+double nowSeconds() {
+  using namespace std::chrono;
+  return duration<double>(steady_clock::now().time_since_epoch()).count();
+}
+
+void require(bool ok, const char* field, const std::string& rule) {
+  if (!ok) throw InputError(std::string(field) + " must be " + rule, std::string("gp.") + field);
+}
+
+}  // namespace
+
+void validate(const GpConfig& c) {
+  require(c.population >= 2, "population", "at least 2");
+  require(c.generations >= 1, "generations", "at least 1");
+  require(c.crossoverRate >= 0 && c.crossoverRate <= 1, "crossover", "in [0, 1]");
+  require(c.listCrossoverShare >= 0 && c.listCrossoverShare <= 1, "list_crossover_share",
+          "in [0, 1]");
+  require(c.nodeMutationWeight >= 0 && c.treeMutationWeight >= 0 && c.shrinkageWeight >= 0,
+          "mutation_weights", "non-negative");
+  require(
+      c.crossoverRate == 1 || c.nodeMutationWeight + c.treeMutationWeight + c.shrinkageWeight > 0,
+      "mutation_weights", "positive in sum when crossover < 1");
+  require(c.elitism >= 0 && c.elitism < 1, "elitism", "in [0, 1)");
+  require(c.tournamentSize >= 1, "tournament_size", "at least 1");
+  require(c.sizePenalty >= 0 && std::isfinite(c.sizePenalty), "size_penalty",
+          "finite and non-negative");
+}
+
+const char* operatorName(Operator op) {
+  static const char* names[] = {"subtree_crossover", "feature_list_crossover", "node_mutation",
+                                "tree_mutation", "shrinkage"};
+  return names[static_cast<int>(op)];
+}
+
+std::vector<double> operatorProbabilities(const GpConfig& c) {
+  const double mutation = 1.0 - c.crossoverRate;
+  const double weights = c.nodeMutationWeight + c.treeMutationWeight + c.shrinkageWeight;
+  const auto share = [&](double w) { return weights > 0 ? mutation * w / weights : 0.0; };
+  return {c.crossoverRate * (1.0 - c.listCrossoverShare), c.crossoverRate * c.listCrossoverShare,
+          share(c.nodeMutationWeight), share(c.treeMutationWeight), share(c.shrinkageWeight)};
+}
+
+Evolution::Evolution(GpConfig config, SearchSpace space, Evaluator& evaluator)
+    : config_(config),
+      space_(std::move(space)),
+      evaluator_(evaluator),
+      rng_(deriveSeed(config.seed, kVariationStream)) {
+  validate(config_);
+}
+
+GenerationStats Evolution::initialize() {
+  const double start = nowSeconds();
+  generation_ = 0;
+  population_.clear();
+  for (int i = 0; i < config_.population; ++i) {
+    population_.push_back({randomGenome(rng_, space_), 0.0, 0.0});
+  }
+  return evaluateFrom(0, start);
+}
+
+GenerationStats Evolution::step() {
+  const double start = nowSeconds();
+  std::vector<std::size_t> order(population_.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return population_[a].fitness > population_[b].fitness;
+  });
+  const auto elites = static_cast<std::size_t>(
+      std::lround(config_.elitism * static_cast<double>(config_.population)));
+  std::vector<Individual> next;
+  next.reserve(population_.size());
+  for (std::size_t e = 0; e < elites; ++e) next.push_back(population_[order[e]]);
+  auto children = breed(population_.size() - elites);
+  for (auto& g : children) next.push_back({std::move(g), 0.0, 0.0});
+  population_ = std::move(next);
+  ++generation_;
+  return evaluateFrom(elites, start);
+}
+
+void Evolution::run(const std::function<bool(const GenerationStats&)>& onGeneration) {
+  if (!onGeneration(initialize())) return;
+  while (generation_ + 1 < config_.generations) {
+    if (!onGeneration(step())) return;
+  }
+}
+
+const Individual& Evolution::best() const {
+  return *std::max_element(
+      population_.begin(), population_.end(),
+      [](const Individual& a, const Individual& b) { return a.fitness < b.fitness; });
+}
+
+const Individual& Evolution::tournament() {
+  const Individual* winner = nullptr;
+  for (int t = 0; t < config_.tournamentSize; ++t) {
+    const Individual& candidate = population_[rng_.below(population_.size())];
+    if (winner == nullptr || candidate.fitness > winner->fitness) winner = &candidate;
+  }
+  return *winner;
+}
+
+std::vector<expr::Genome> Evolution::breed(std::size_t count) {
+  const auto probabilities = operatorProbabilities(config_);
+  std::vector<expr::Genome> children;
+  children.reserve(count + 1);
+  while (children.size() < count) {
+    double u = rng_.uniform();
+    int chosen = kOperatorCount - 1;
+    for (int o = 0; o < kOperatorCount; ++o) {
+      if (u < probabilities[o]) {
+        chosen = o;
+        break;
+      }
+      u -= probabilities[o];
+    }
+    ++operatorCounts_[chosen];
+    const auto op = static_cast<Operator>(chosen);
+    if (op == Operator::SubtreeCrossover || op == Operator::FeatureListCrossover) {
+      const expr::Genome& a = tournament().genome;
+      const expr::Genome& b = tournament().genome;
+      auto [first, second] = op == Operator::SubtreeCrossover
+                                 ? subtreeCrossover(rng_, a, b, space_)
+                                 : featureListCrossover(rng_, a, b, space_);
+      children.push_back(std::move(first));
+      if (children.size() < count) children.push_back(std::move(second));
+      continue;
+    }
+    const expr::Genome& parent = tournament().genome;
+    switch (op) {
+      case Operator::NodeMutation:
+        children.push_back(nodeMutation(rng_, parent, space_));
+        break;
+      case Operator::TreeMutation:
+        children.push_back(treeMutation(rng_, parent, space_));
+        break;
+      default:
+        children.push_back(shrinkage(rng_, parent, space_));
+        break;
+    }
+  }
+  return children;
+}
+
+GenerationStats Evolution::evaluateFrom(std::size_t from, double startSeconds) {
+  std::vector<const expr::Genome*> genomes;
+  std::vector<std::uint64_t> seeds;
+  for (std::size_t i = from; i < population_.size(); ++i) {
+    genomes.push_back(&population_[i].genome);
+    seeds.push_back(deriveSeed(config_.seed, kEvaluationStream, generation_, i));
+  }
+  const auto raw = evaluator_.evaluate(genomes, seeds);
+  constexpr double worst = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = from; i < population_.size(); ++i) {
+    Individual& ind = population_[i];
+    const double r = raw[i - from];
+    ind.rawFitness = std::isfinite(r) ? r : worst;
+    ind.fitness =
+        std::isfinite(r) ? r - config_.sizePenalty * static_cast<double>(ind.genome.size()) : worst;
+  }
+
+  GenerationStats stats;
+  stats.generation = generation_;
+  stats.evaluations = static_cast<int>(genomes.size());
+  std::vector<double> finite;
+  double sizeSum = 0.0, featureSum = 0.0;
+  for (const auto& ind : population_) {
+    if (std::isfinite(ind.fitness)) finite.push_back(ind.fitness);
+    sizeSum += static_cast<double>(ind.genome.size());
+    featureSum += static_cast<double>(ind.genome.featureCount());
+  }
+  const auto n = static_cast<double>(population_.size());
+  stats.invalid = static_cast<int>(population_.size() - finite.size());
+  stats.meanSize = sizeSum / n;
+  stats.meanFeatures = featureSum / n;
+  stats.bestIndividual = best();
+  stats.best = stats.bestIndividual.fitness;
+  if (finite.empty()) {
+    stats.mean = stats.median = worst;
+  } else {
+    stats.mean =
+        std::accumulate(finite.begin(), finite.end(), 0.0) / static_cast<double>(finite.size());
+    std::sort(finite.begin(), finite.end());
+    const std::size_t m = finite.size() / 2;
+    stats.median = finite.size() % 2 ? finite[m] : 0.5 * (finite[m - 1] + finite[m]);
+  }
+  stats.seconds = nowSeconds() - startSeconds;
+  return stats;
+}
+
+}  // namespace gpfd::gp

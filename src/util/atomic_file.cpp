@@ -1,0 +1,50 @@
+#include "gpfd/util/atomic_file.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "gpfd/util/error.hpp"
+
+namespace gpfd {
+
+void writeFileAtomically(const std::string& path, const std::string& contents) {
+  const std::string temporary = path + ".tmp." + std::to_string(::getpid());
+  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw InputError(std::string("cannot write: ") + std::strerror(errno), path);
+  const char* data = contents.data();
+  std::size_t left = contents.size();
+  int error = 0;
+  while (left > 0) {
+    const ssize_t n = ::write(fd, data, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      error = errno;
+      break;
+    }
+    data += n;
+    left -= static_cast<std::size_t>(n);
+  }
+  if (error == 0 && ::fsync(fd) != 0) error = errno;
+  if (::close(fd) != 0 && error == 0) error = errno;
+  if (error == 0 && std::rename(temporary.c_str(), path.c_str()) != 0) error = errno;
+  if (error != 0) {
+    std::remove(temporary.c_str());
+    throw InputError(std::string("cannot write: ") + std::strerror(error), path);
+  }
+}
+
+std::string readFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(std::string("cannot read: ") + std::strerror(errno), path);
+  std::ostringstream out;
+  out << in.rdbuf();
+  if (in.bad()) throw InputError("cannot read", path);
+  return out.str();
+}
+
+}  // namespace gpfd
