@@ -1,0 +1,116 @@
+#include "gpfd/env/simulate.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "gpfd/env/params.hpp"
+#include "gpfd/util/error.hpp"
+
+namespace gpfd::env {
+namespace {
+
+void appendRow(std::string& out, std::size_t step, std::span<const double> action,
+               std::size_t actionComponents, std::span<const double> state,
+               const StepResult* result) {
+  fmt::format_to(std::back_inserter(out), "{}", step);
+  for (std::size_t i = 0; i < actionComponents; ++i) {
+    out += ',';
+    if (!action.empty()) fmt::format_to(std::back_inserter(out), "{}", action[i]);
+  }
+  for (double v : state) fmt::format_to(std::back_inserter(out), ",{}", v);
+  if (result) {
+    fmt::format_to(std::back_inserter(out), ",{},{:d},{:d}\n", result->reward,
+                   static_cast<int>(result->terminated), static_cast<int>(result->truncated));
+  } else {
+    out += ",,,\n";
+  }
+}
+
+}  // namespace
+
+std::vector<double> parseNumberList(const std::string& text, const std::string& where) {
+  std::vector<double> values;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', start);
+    const std::string field =
+        text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    values.push_back(parseFiniteNumber(field, where));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return values;
+}
+
+std::vector<ActionLine> readActionLines(std::istream& in, const std::string& source) {
+  std::vector<ActionLine> lines;
+  std::string text;
+  std::size_t number = 0;
+  while (std::getline(in, text)) {
+    ++number;
+    if (!text.empty() && text.back() == '\r') text.pop_back();
+    if (text.find_first_not_of(" \t") == std::string::npos) continue;
+    lines.push_back({number, parseNumberList(text, fmt::format("{} line {}", source, number))});
+  }
+  return lines;
+}
+
+std::string simulateCsv(const SimulationRequest& request) {
+  const auto env = Registry::global().make(request.env, request.params);
+  const ActionSpace space = env->actionSpace();
+  Rng rng(request.seed);
+  env->reset(rng);
+  if (request.initialState) {
+    if (request.initialState->size() != env->stateDim()) {
+      throw InputError(
+          fmt::format("{} takes {} state variables ({}), got {}", request.env, env->stateDim(),
+                      fmt::join(env->stateNames(), ","), request.initialState->size()),
+          "--state");
+    }
+    env->setState(*request.initialState);
+  }
+
+  std::string out = "step";
+  for (const auto& name : space.names) out += "," + name;
+  for (const auto& name : env->stateNames()) out += "," + name;
+  out += ",reward,terminated,truncated\n";
+  appendRow(out, 0, {}, space.components, env->state(), nullptr);
+
+  Rng policy(deriveSeed(request.seed, 1));
+  const std::size_t steps = request.actions ? request.actions->size() : request.randomSteps;
+  std::vector<double> action(space.components);
+  for (std::size_t t = 0; t < steps; ++t) {
+    std::string where = "random policy";
+    if (request.actions) {
+      const ActionLine& line = (*request.actions)[t];
+      where = fmt::format("{} line {}", request.actionsSource, line.line);
+      if (line.values.size() != space.components) {
+        throw InputError(
+            fmt::format("{} takes {} action components ({}), got {}", request.env, space.components,
+                        fmt::join(space.names, ","), line.values.size()),
+            where);
+      }
+      std::copy(line.values.begin(), line.values.end(), action.begin());
+    } else {
+      env->sampleAction(policy, action);
+    }
+    if (space.continuous()) {
+      for (std::size_t i = 0; i < space.components; ++i) {
+        action[i] = std::clamp(action[i], space.low[i], space.high[i]);
+      }
+    }
+    StepResult result;
+    try {
+      result = env->step(action);
+    } catch (const InputError& e) {
+      throw InputError(e.what(), where);
+    }
+    appendRow(out, t + 1, action, space.components, env->state(), &result);
+    if (request.stopAtEpisodeEnd && (result.terminated || result.truncated)) break;
+  }
+  return out;
+}
+
+}  // namespace gpfd::env
