@@ -1,0 +1,62 @@
+// rl: the features a linear learner sees: a feature map's outputs, optionally normalised online
+// by a running mean and standard deviation, optionally followed by a constant bias feature.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "gpfd/jit/feature_map.hpp"
+#include "gpfd/rl/learning_curve.hpp"
+
+namespace gpfd::rl {
+
+struct FeatureOptions {
+  // Append a constant 1 after the map's features.
+  bool bias = true;
+  // Online normalisation: features become (phi - mean) / std with the running mean and standard
+  // deviation of every feature seen so far. The statistics are frozen while a batch is played
+  // and refreshed at each update; the weights are then re-expressed so that the learned function
+  // does not jump (exactly when a bias is present; without one only the scale is normalised).
+  // Off by default, as in the paper.
+  bool normalise = false;
+};
+
+// Not thread-safe (it keeps statistics); one per learning run.
+class FeaturePipeline {
+ public:
+  FeaturePipeline(const jit::FeatureMap& map, const FeatureOptions& options);
+
+  std::size_t stateDim() const { return map_->inputDim(); }
+  std::size_t rawDim() const { return raw_; }
+  std::size_t dim() const { return raw_ + (options_.bias ? 1 : 0); }
+  const FeatureOptions& options() const { return options_; }
+
+  // Features of one state into out[0, dim()). Returns false when a feature is not finite.
+  bool evaluate(const double* state, double* out);
+  // n states (n * stateDim() values) to n rows of dim() features. Returns false when a feature
+  // is not finite.
+  bool evaluateBatch(const double* states, std::size_t n, double* out);
+
+  // Refreshes the normalisation from the statistics gathered so far and re-expresses
+  // `weights` (rows x dim(), row-major, followed by anything else, which is left alone) so that
+  // every output keeps its value. No-op when not normalising.
+  void refresh(double* weights, std::size_t rows);
+
+  // Exports the normalisation (shift/scale) into `out`; imports it from `in` (for evaluation of
+  // trained weights). Sizes are checked by the caller.
+  void exportTo(LinearWeights& out) const;
+  void importFrom(const LinearWeights& in);
+
+ private:
+  bool finish(double* row);  // Record statistics, normalise, append the bias; false if not finite.
+
+  const jit::FeatureMap* map_;
+  FeatureOptions options_;
+  std::size_t raw_;
+  std::vector<double> shift_, scale_;  // Current snapshot.
+  std::vector<double> mean_, m2_;      // Welford running statistics.
+  std::int64_t count_ = 0;
+};
+
+}  // namespace gpfd::rl

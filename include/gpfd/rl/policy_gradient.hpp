@@ -1,0 +1,59 @@
+// rl: policy gradient with Rprop (Girgin & Preux, section 4): a linear policy, the episodic
+// likelihood-ratio gradient with the optimal baseline, an Rprop step every few episodes.
+#pragma once
+
+#include <cstdint>
+
+#include "gpfd/env/environment.hpp"
+#include "gpfd/jit/feature_map.hpp"
+#include "gpfd/rl/features.hpp"
+#include "gpfd/rl/learning_curve.hpp"
+#include "gpfd/rl/linear_policy.hpp"
+#include "gpfd/rl/rprop.hpp"
+#include "gpfd/util/rng.hpp"
+
+namespace gpfd::rl {
+
+struct PolicyGradientConfig {
+  int updates = 100;           // Policy updates; the curve has updates + 1 rows.
+  int episodesPerUpdate = 10;  // Paper: 10.
+  // Steps per episode at most, on top of the environment's own time limit (a safety cap).
+  int maxEpisodeSteps = 100000;
+  // Stop after the batch in which the total number of steps reaches this (0: no cap).
+  std::int64_t maxTotalSteps = 0;
+  double discount = 1.0;        // gamma for the return in the gradient (the curve is undiscounted).
+  bool optimalBaseline = true;  // Peters & Schaal's baseline; false: no baseline.
+  RpropConfig rprop = RpropConfig::paperLarge();
+  PolicyOptions policy;
+  FeatureOptions features;
+};
+
+// Trains from zero weights. The map's inputDim() must equal env.stateDim() (InputError
+// otherwise). Row u of the curve is the batch played with the policy after u updates; the final
+// weights are those of the last row. A non-finite feature, action or return marks the curve
+// diverged and ends it; nothing throws for numerical trouble.
+LearningCurve trainPolicyGradient(env::Environment& env, const jit::FeatureMap& map,
+                                  const PolicyGradientConfig& config, Rng& rng);
+
+// The gradient estimate (the one an update would use) at the given policy parameters, from
+// `episodes` sampled episodes: for tests and diagnostics. Empty when a run diverged.
+Eigen::VectorXd estimatePolicyGradient(env::Environment& env, const jit::FeatureMap& map,
+                                       const PolicyGradientConfig& config,
+                                       const Eigen::VectorXd& parameters, int episodes, Rng& rng);
+
+struct EvaluationResult {
+  int episodes = 0;
+  double meanReturn = 0.0;
+  double stdReturn = 0.0;  // Sample standard deviation of the episode returns.
+  std::int64_t steps = 0;
+  bool diverged = false;
+};
+
+// Plays `episodes` episodes with given weights (as trainPolicyGradient returns them, with the
+// same config.policy and config.features), greedy (the mean action / most probable choice) or
+// stochastic.
+EvaluationResult evaluatePolicy(env::Environment& env, const jit::FeatureMap& map,
+                                const LinearWeights& weights, const PolicyGradientConfig& config,
+                                int episodes, bool greedy, Rng& rng);
+
+}  // namespace gpfd::rl

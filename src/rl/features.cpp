@@ -1,0 +1,95 @@
+#include "gpfd/rl/features.hpp"
+
+#include <cmath>
+
+namespace gpfd::rl {
+
+FeaturePipeline::FeaturePipeline(const jit::FeatureMap& map, const FeatureOptions& options)
+    : map_(&map),
+      options_(options),
+      raw_(map.outputDim()),
+      shift_(raw_, 0.0),
+      scale_(raw_, 1.0),
+      mean_(raw_, 0.0),
+      m2_(raw_, 0.0) {}
+
+bool FeaturePipeline::finish(double* row) {
+  bool finite = true;
+  for (std::size_t j = 0; j < raw_; ++j) finite = finite && std::isfinite(row[j]);
+  if (!finite) return false;
+  if (options_.normalise) {
+    ++count_;
+    const double n = static_cast<double>(count_);
+    for (std::size_t j = 0; j < raw_; ++j) {
+      // Welford's update of the running mean and sum of squared deviations.
+      const double delta = row[j] - mean_[j];
+      mean_[j] += delta / n;
+      m2_[j] += delta * (row[j] - mean_[j]);
+      row[j] = (row[j] - shift_[j]) / scale_[j];
+    }
+  }
+  if (options_.bias) row[raw_] = 1.0;
+  return true;
+}
+
+bool FeaturePipeline::evaluate(const double* state, double* out) {
+  map_->evaluate(state, out);
+  return finish(out);
+}
+
+bool FeaturePipeline::evaluateBatch(const double* states, std::size_t n, double* out) {
+  const std::size_t width = dim();
+  if (!options_.bias) {
+    map_->evaluateBatch(states, n, out);
+  } else {
+    // The map writes rows of raw_ values; evaluate in place row by row to leave room for the bias.
+    for (std::size_t i = 0; i < n; ++i) map_->evaluate(states + i * stateDim(), out + i * width);
+  }
+  bool finite = true;
+  for (std::size_t i = 0; i < n; ++i) finite = finish(out + i * width) && finite;
+  return finite;
+}
+
+void FeaturePipeline::refresh(double* weights, std::size_t rows) {
+  if (!options_.normalise || count_ < 2) return;
+  const std::size_t width = dim();
+  std::vector<double> newShift(raw_), newScale(raw_);
+  for (std::size_t j = 0; j < raw_; ++j) {
+    const double sd = std::sqrt(m2_[j] / static_cast<double>(count_ - 1));
+    newScale[j] = (std::isfinite(sd) && sd > 1e-12) ? sd : 1.0;
+    newShift[j] = options_.bias ? mean_[j] : 0.0;
+  }
+  // Output w.(phi - s)/c + b must stay the same under (s', c'):
+  // w'_j = w_j c'_j / c_j, b' = b + sum_j w_j (s'_j - s_j) / c_j.
+  for (std::size_t r = 0; r < rows; ++r) {
+    double* w = weights + r * width;
+    double biasShift = 0.0;
+    for (std::size_t j = 0; j < raw_; ++j) {
+      biasShift += w[j] * (newShift[j] - shift_[j]) / scale_[j];
+      w[j] *= newScale[j] / scale_[j];
+    }
+    if (options_.bias) w[raw_] += biasShift;
+  }
+  shift_ = std::move(newShift);
+  scale_ = std::move(newScale);
+}
+
+void FeaturePipeline::exportTo(LinearWeights& out) const {
+  out.bias = options_.bias;
+  if (options_.normalise) {
+    out.shift = shift_;
+    out.scale = scale_;
+  } else {
+    out.shift.clear();
+    out.scale.clear();
+  }
+}
+
+void FeaturePipeline::importFrom(const LinearWeights& in) {
+  if (in.shift.size() == raw_ && in.scale.size() == raw_) {
+    shift_ = in.shift;
+    scale_ = in.scale;
+  }
+}
+
+}  // namespace gpfd::rl

@@ -1,0 +1,49 @@
+#include "gpfd/rl/gradient_estimator.hpp"
+
+namespace gpfd::rl {
+
+EpisodicGradientEstimator::EpisodicGradientEstimator(Eigen::Index parameterCount,
+                                                     bool optimalBaseline)
+    : optimalBaseline_(optimalBaseline),
+      sumE_(Eigen::VectorXd::Zero(parameterCount)),
+      sumER_(Eigen::VectorXd::Zero(parameterCount)),
+      sumE2_(Eigen::VectorXd::Zero(parameterCount)),
+      sumE2R_(Eigen::VectorXd::Zero(parameterCount)) {}
+
+void EpisodicGradientEstimator::addEpisode(const Eigen::VectorXd& eligibility,
+                                           double episodeReturn) {
+  ++episodes_;
+  sumE_ += eligibility;
+  sumER_ += episodeReturn * eligibility;
+  sumE2_ += eligibility.cwiseAbs2();
+  sumE2R_ += episodeReturn * eligibility.cwiseAbs2();
+}
+
+void EpisodicGradientEstimator::baseline(Eigen::VectorXd& out) const {
+  out.setZero(sumE_.size());
+  if (!optimalBaseline_) return;
+  for (Eigen::Index k = 0; k < out.size(); ++k) {
+    if (sumE2_[k] > 0.0) out[k] = sumE2R_[k] / sumE2_[k];
+  }
+}
+
+void EpisodicGradientEstimator::gradient(Eigen::VectorXd& out) const {
+  out.setZero(sumE_.size());
+  if (episodes_ == 0) return;
+  const double n = static_cast<double>(episodes_);
+  for (Eigen::Index k = 0; k < out.size(); ++k) {
+    double b = 0.0;
+    if (optimalBaseline_ && sumE2_[k] > 0.0) b = sumE2R_[k] / sumE2_[k];
+    out[k] = (sumER_[k] - b * sumE_[k]) / n;
+  }
+}
+
+void EpisodicGradientEstimator::clear() {
+  episodes_ = 0;
+  sumE_.setZero();
+  sumER_.setZero();
+  sumE2_.setZero();
+  sumE2R_.setZero();
+}
+
+}  // namespace gpfd::rl
