@@ -37,8 +37,9 @@ void ConcatFeatureMap::evaluate(const double* state, double* features) const {
 
 InterpretedFeatureMap::InterpretedFeatureMap(expr::Genome genome, std::size_t inputDim)
     : genome_(std::move(genome)), inputDim_(inputDim) {
-  const auto problem = expr::checkGenome(genome_, {0, 1 << 20, expr::kMaxParseDepth, expr::kMaxParseSize},
-                                         static_cast<int>(inputDim_));
+  const auto problem =
+      expr::checkGenome(genome_, {0, 1 << 20, expr::kMaxParseDepth, expr::kMaxParseSize},
+                        static_cast<int>(inputDim_));
   if (!problem.empty()) throw std::invalid_argument("InterpretedFeatureMap: " + problem);
 }
 

@@ -1,0 +1,298 @@
+#include "gpfd/jit/program.hpp"
+
+#include <bit>
+#include <cmath>
+#include <string>
+
+#include "gpfd/expr/ops.hpp"
+
+namespace gpfd::jit {
+namespace {
+
+using expr::Op;
+
+bool isCall(Op op) {
+  return op == Op::Sin || op == Op::Cos || op == Op::Exp || op == Op::Log || op == Op::Tanh;
+}
+
+std::uint64_t bits(double x) { return std::bit_cast<std::uint64_t>(x); }
+
+// Builds the instruction list with value numbering: an open-addressing table maps each
+// (op, operands, variable, constant bits) to the instruction that computes it.
+class Builder {
+ public:
+  explicit Builder(std::size_t nodes) {
+    std::size_t capacity = 16;
+    while (capacity < 2 * nodes + 2) capacity *= 2;
+    table_.assign(capacity, kEmpty);
+    code_.reserve(nodes);
+  }
+
+  std::uint32_t constant(double v) { return intern({Op::Const, 0, 0, 0, v}); }
+  std::uint32_t variable(std::uint16_t var) { return intern({Op::Var, var, 0, 0, 0.0}); }
+
+  std::uint32_t unary(Op op, std::uint32_t a) {
+    const Instr& x = code_[a];
+    if (x.op == Op::Const) return constant(expr::apply(op, x.value));
+    switch (op) {
+      case Op::Neg:
+        if (x.op == Op::Neg) return x.a;  // -(-x) = x.
+        break;
+      case Op::Abs:
+        if (x.op == Op::Abs) return a;  // ||x|| = |x|.
+        if (x.op == Op::Neg) return unary(Op::Abs, x.a);
+        break;
+      case Op::Sqrt:  // These read |x| only.
+      case Op::Log:
+        if (x.op == Op::Neg || x.op == Op::Abs) return unary(op, x.a);
+        break;
+      case Op::Square:  // (-x)^2 = |x|^2 = x^2 exactly.
+        if (x.op == Op::Neg || x.op == Op::Abs) return unary(op, x.a);
+        break;
+      default:
+        break;
+    }
+    return intern({op, 0, a, 0, 0.0});
+  }
+
+  std::uint32_t binary(Op op, std::uint32_t a, std::uint32_t b) {
+    const Instr& x = code_[a];
+    const Instr& y = code_[b];
+    const bool xc = x.op == Op::Const, yc = y.op == Op::Const;
+    if (xc && yc) return constant(expr::apply(op, x.value, y.value));
+    // Operands are finite under the protected semantics, so each rewrite below is exact.
+    switch (op) {
+      case Op::Add:  // x + (-0) = x, including x = +-0.
+        if (yc && bits(y.value) == bits(-0.0)) return a;
+        if (xc && bits(x.value) == bits(-0.0)) return b;
+        break;
+      case Op::Sub:
+        if (a == b) return constant(0.0);                // x - x = +0.
+        if (yc && bits(y.value) == bits(0.0)) return a;  // x - (+0) = x.
+        break;
+      case Op::Mul:
+        if (yc && y.value == 1.0) return a;
+        if (xc && x.value == 1.0) return b;
+        if (yc && y.value == -1.0) return unary(Op::Neg, a);
+        if (xc && x.value == -1.0) return unary(Op::Neg, b);
+        break;
+      case Op::Div:
+        if (a == b) return constant(1.0);  // x / x = 1, also when |x| is near zero.
+        if (yc && !(std::fabs(y.value) > expr::protect::kNearZero)) return constant(1.0);
+        if (yc && y.value == 1.0) return a;
+        break;
+      case Op::Min:
+      case Op::Max:
+        if (a == b) return a;
+        break;
+      case Op::AbsDiff:
+        if (a == b) return constant(0.0);
+        break;
+      default:
+        break;
+    }
+    // a + b, a * b and |a - b| are exactly commutative in IEEE arithmetic; min and max are not
+    // (signed zeros), nor are the others.
+    if ((op == Op::Add || op == Op::Mul || op == Op::AbsDiff) && a > b) std::swap(a, b);
+    return intern({op, 0, a, b, 0.0});
+  }
+
+  std::vector<Instr>& code() { return code_; }
+
+ private:
+  static constexpr std::uint32_t kEmpty = 0xffffffffu;
+
+  static bool same(const Instr& p, const Instr& q) {
+    return p.op == q.op && p.var == q.var && p.a == q.a && p.b == q.b &&
+           bits(p.value) == bits(q.value);
+  }
+
+  static std::uint64_t hash(const Instr& in) {
+    std::uint64_t h = static_cast<std::uint64_t>(in.op) | (std::uint64_t{in.var} << 8);
+    h ^= (std::uint64_t{in.a} << 24) ^ (std::uint64_t{in.b} << 44);
+    h ^= bits(in.value) * 0x9e3779b97f4a7c15ULL;
+    h ^= h >> 31;
+    h *= 0xbf58476d1ce4e5b9ULL;
+    return h ^ (h >> 29);
+  }
+
+  std::uint32_t intern(const Instr& in) {
+    const std::size_t mask = table_.size() - 1;
+    for (std::size_t slot = hash(in) & mask;; slot = (slot + 1) & mask) {
+      const std::uint32_t id = table_[slot];
+      if (id == kEmpty) {
+        table_[slot] = static_cast<std::uint32_t>(code_.size());
+        code_.push_back(in);
+        return table_[slot];
+      }
+      if (same(code_[id], in)) return id;
+    }
+  }
+
+  std::vector<Instr> code_;
+  std::vector<std::uint32_t> table_;
+};
+
+void check(const expr::Genome& genome, std::size_t inputDim) {
+  if (genome.featureCount() > kMaxLowerFeatures) {
+    throw LowerError("genome has " + std::to_string(genome.featureCount()) +
+                     " features, more than the limit of " + std::to_string(kMaxLowerFeatures));
+  }
+  if (genome.size() > kMaxLowerNodes) {
+    throw LowerError("genome has " + std::to_string(genome.size()) +
+                     " nodes, more than the limit of " + std::to_string(kMaxLowerNodes));
+  }
+  const int variables = inputDim > 65536 ? 65536 : static_cast<int>(inputDim);
+  std::size_t total = 0;
+  for (std::size_t k = 0; k < genome.featureCount(); ++k) {
+    // Lengths are checked against the node array before any feature view is formed.
+    const std::uint32_t start = genome.starts()[k];
+    if (start >= genome.size() || genome.nodes()[start].length > genome.size() - start) {
+      throw LowerError("feature " + std::to_string(k) + ": length out of the genome");
+    }
+    const expr::TreeView tree = genome.feature(k);
+    total += tree.size();
+    const std::string problem = expr::checkTree(tree, variables);
+    if (!problem.empty()) throw LowerError("feature " + std::to_string(k) + ": " + problem);
+    if (expr::depth(tree) > kMaxLowerDepth) {
+      throw LowerError("feature " + std::to_string(k) + " is deeper than the limit of " +
+                       std::to_string(kMaxLowerDepth) + " levels");
+    }
+  }
+  if (total > kMaxLowerNodes) throw LowerError("features overlap or exceed the node limit");
+}
+
+}  // namespace
+
+bool Program::hasCalls() const {
+  for (const Instr& in : code) {
+    if (isCall(in.op)) return true;
+  }
+  return false;
+}
+
+Program lower(const expr::Genome& genome, std::size_t inputDim) {
+  check(genome, inputDim);
+  Builder builder(genome.size());
+  std::vector<std::uint32_t> outputs;
+  outputs.reserve(genome.featureCount());
+  std::vector<std::uint32_t> stack;
+  stack.reserve(64);
+  for (std::size_t k = 0; k < genome.featureCount(); ++k) {
+    const expr::TreeView tree = genome.feature(k);
+    // Reverse prefix order: operands are on the stack, first operand on top.
+    stack.clear();
+    for (std::size_t i = tree.size(); i-- > 0;) {
+      const expr::Node& node = tree[i];
+      switch (expr::arity(node.op)) {
+        case 0:
+          stack.push_back(node.op == Op::Var ? builder.variable(node.var)
+                                             : builder.constant(node.value));
+          break;
+        case 1:
+          stack.back() = builder.unary(node.op, stack.back());
+          break;
+        default: {
+          const std::uint32_t a = stack.back();
+          stack.pop_back();
+          stack.back() = builder.binary(node.op, a, stack.back());
+        }
+      }
+    }
+    outputs.push_back(stack.back());
+  }
+
+  // Keep what the outputs need, in the original order.
+  std::vector<Instr>& all = builder.code();
+  std::vector<std::uint32_t> index(all.size(), 0);
+  std::vector<char> live(all.size(), 0);
+  for (std::uint32_t o : outputs) live[o] = 1;
+  for (std::size_t i = all.size(); i-- > 0;) {
+    if (!live[i]) continue;
+    const int n = expr::arity(all[i].op);
+    if (n >= 1) live[all[i].a] = 1;
+    if (n == 2) live[all[i].b] = 1;
+  }
+  Program program;
+  program.inputDim = inputDim;
+  program.nodeCount = genome.size();
+  program.code.reserve(all.size());
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (!live[i]) continue;
+    Instr in = all[i];
+    in.a = index[in.a];
+    in.b = index[in.b];
+    index[i] = static_cast<std::uint32_t>(program.code.size());
+    program.code.push_back(in);
+  }
+  for (std::uint32_t o : outputs) program.outputs.push_back(index[o]);
+  return program;
+}
+
+void run(const Program& program, const double* state, double* features, double* v) {
+  namespace p = expr::protect;
+  const Instr* code = program.code.data();
+  const std::size_t n = program.code.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Instr& in = code[i];
+    switch (in.op) {
+      case Op::Const:
+        v[i] = in.value;
+        break;
+      case Op::Var:
+        v[i] = p::input(state[in.var]);
+        break;
+      case Op::Add:
+        v[i] = p::add(v[in.a], v[in.b]);
+        break;
+      case Op::Sub:
+        v[i] = p::sub(v[in.a], v[in.b]);
+        break;
+      case Op::Mul:
+        v[i] = p::mul(v[in.a], v[in.b]);
+        break;
+      case Op::Div:
+        v[i] = p::div(v[in.a], v[in.b]);
+        break;
+      case Op::Min:
+        v[i] = p::min(v[in.a], v[in.b]);
+        break;
+      case Op::Max:
+        v[i] = p::max(v[in.a], v[in.b]);
+        break;
+      case Op::AbsDiff:
+        v[i] = p::absdiff(v[in.a], v[in.b]);
+        break;
+      case Op::Sin:
+        v[i] = std::sin(v[in.a]);
+        break;
+      case Op::Cos:
+        v[i] = std::cos(v[in.a]);
+        break;
+      case Op::Sqrt:
+        v[i] = p::sqrt(v[in.a]);
+        break;
+      case Op::Neg:
+        v[i] = -v[in.a];
+        break;
+      case Op::Abs:
+        v[i] = std::fabs(v[in.a]);
+        break;
+      case Op::Exp:
+        v[i] = p::exp(v[in.a]);
+        break;
+      case Op::Log:
+        v[i] = p::log(v[in.a]);
+        break;
+      case Op::Tanh:
+        v[i] = std::tanh(v[in.a]);
+        break;
+      case Op::Square:
+        v[i] = p::square(v[in.a]);
+        break;
+    }
+  }
+  for (std::size_t k = 0; k < program.outputs.size(); ++k) features[k] = v[program.outputs[k]];
+}
+
+}  // namespace gpfd::jit
