@@ -1,0 +1,134 @@
+#include "gpfd/gp/evolution.hpp"
+
+#include <gtest/gtest.h>
+
+#include <boost/math/distributions/chi_squared.hpp>
+
+#include "gpfd/expr/eval.hpp"
+#include "gpfd/util/error.hpp"
+
+namespace gpfd::gp {
+namespace {
+
+SearchSpace smallSpace() {
+  SearchSpace s;
+  s.primitives = expr::PrimitiveSet::named("control");
+  s.variableCount = 2;
+  s.limits = {1, 5, 6, 30};
+  return s;
+}
+
+// A cheap fitness that uses its RNG: closeness of the first feature to a*b on noisy samples.
+double noisyFitness(const expr::Genome& g, Rng& rng) {
+  double error = 0.0;
+  std::vector<double> out(g.featureCount());
+  for (int i = 0; i < 20; ++i) {
+    const double state[] = {rng.uniform(-1, 1), rng.uniform(-1, 1)};
+    expr::evaluate(g, state, out.data());
+    const double d = out[0] - state[0] * state[1];
+    error += d * d;
+  }
+  return -error;
+}
+
+std::vector<GenerationStats> runOnce(std::uint64_t seed) {
+  GpConfig config;
+  config.population = 40;
+  config.generations = 8;
+  config.sizePenalty = 1e-3;
+  config.seed = seed;
+  SerialEvaluator evaluator(noisyFitness);
+  Evolution evolution(config, smallSpace(), evaluator);
+  std::vector<GenerationStats> all;
+  evolution.run([&](const GenerationStats& s) {
+    all.push_back(s);
+    return true;
+  });
+  return all;
+}
+
+void expectSameStats(const std::vector<GenerationStats>& a, const std::vector<GenerationStats>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].best, b[i].best);
+    EXPECT_EQ(a[i].mean, b[i].mean);
+    EXPECT_EQ(a[i].median, b[i].median);
+    EXPECT_EQ(a[i].meanSize, b[i].meanSize);
+    EXPECT_EQ(a[i].meanFeatures, b[i].meanFeatures);
+    EXPECT_EQ(a[i].bestIndividual.genome, b[i].bestIndividual.genome);
+  }
+}
+
+TEST(Evolution, SameSeedSameStatistics) {
+  const auto a = runOnce(11), b = runOnce(11), c = runOnce(12);
+  expectSameStats(a, b);
+  EXPECT_NE(a.back().mean, c.back().mean);
+}
+
+TEST(Evolution, ElitesKeepTheirFitnessAndBestNeverDrops) {
+  const auto stats = runOnce(3);
+  ASSERT_EQ(stats.size(), 8u);
+  for (std::size_t i = 1; i < stats.size(); ++i) {
+    EXPECT_GE(stats[i].best, stats[i - 1].best);
+    EXPECT_EQ(stats[i].evaluations, 36);  // 40 minus 4 elites.
+  }
+  EXPECT_EQ(stats[0].evaluations, 40);
+}
+
+TEST(Evolution, NonFiniteFitnessScoresWorst) {
+  GpConfig config;
+  config.population = 20;
+  config.generations = 2;
+  SerialEvaluator evaluator([](const expr::Genome& g, Rng&) {
+    return g.featureCount() == 1 ? std::numeric_limits<double>::quiet_NaN() : 1.0;
+  });
+  Evolution evolution(config, smallSpace(), evaluator);
+  const auto stats = evolution.initialize();
+  EXPECT_GT(stats.invalid, 0);
+  EXPECT_EQ(stats.best, 1.0);
+  for (const auto& ind : evolution.population()) {
+    if (ind.genome.featureCount() == 1) {
+      EXPECT_EQ(ind.fitness, -INFINITY);
+    }
+  }
+}
+
+// Observed operator frequencies match the configured probabilities (chi-square, 5 categories).
+TEST(Evolution, OperatorFrequenciesMatchProbabilities) {
+  GpConfig config;
+  config.population = 200;
+  config.generations = 30;
+  SerialEvaluator evaluator([](const expr::Genome& g, Rng&) { return -double(g.size()); });
+  Evolution evolution(config, smallSpace(), evaluator);
+  evolution.run([](const GenerationStats&) { return true; });
+  const auto probabilities = operatorProbabilities(config);
+  EXPECT_NEAR(probabilities[0], 0.7 * 5.0 / 6.0, 1e-12);
+  EXPECT_NEAR(probabilities[2], 0.15, 1e-12);
+  EXPECT_NEAR(probabilities[3], 0.075, 1e-12);
+  const auto& counts = evolution.operatorCounts();
+  double total = 0.0;
+  for (long c : counts) total += static_cast<double>(c);
+  double chi2 = 0.0;
+  for (int o = 0; o < kOperatorCount; ++o) {
+    const double expected = total * probabilities[o];
+    const double observed = static_cast<double>(counts[o]);
+    chi2 += (observed - expected) * (observed - expected) / expected;
+  }
+  const boost::math::chi_squared distribution(kOperatorCount - 1);
+  const double p = boost::math::cdf(boost::math::complement(distribution, chi2));
+  EXPECT_GT(p, 1e-4) << "chi2 = " << chi2 << " over " << total << " draws";
+  EXPECT_GT(total, 3000);
+}
+
+TEST(Evolution, ConfigValidation) {
+  SerialEvaluator evaluator(noisyFitness);
+  GpConfig bad;
+  bad.elitism = 1.5;
+  EXPECT_THROW(Evolution(bad, smallSpace(), evaluator), InputError);
+  bad = GpConfig{};
+  bad.population = 1;
+  EXPECT_THROW(Evolution(bad, smallSpace(), evaluator), InputError);
+}
+
+}  // namespace
+}  // namespace gpfd::gp
