@@ -1,0 +1,236 @@
+// gpfd bench jit: the paper's Figure 3 reproduced and extended (docs/jit.md). Writes
+// DIR/jit.csv (the {+,-,*,/} set), DIR/jit_unary.csv (with sin, cos, sqrt), both with the columns
+// depth,nodes,method,ns_per_call,compile_us, DIR/jit.png and DIR/jit.svg (speed-ups over the tree
+// interpreter, gnuplot) and DIR/jit_summary.txt (the ratios of the targets).
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "command.hpp"
+#include "gpfd/jit/aot_reference.hpp"
+#include "gpfd/jit/figure3.hpp"
+#include "gpfd/util/error.hpp"
+
+namespace gpfd::app {
+namespace {
+
+namespace fs = std::filesystem;
+using jit::BenchSet;
+using jit::Figure3Row;
+
+struct BenchJitArgs {
+  std::string depths = "2-8";
+  std::size_t calls = 1000000;
+  int runs = 10;
+  std::uint64_t seed = jit::kBenchDefaultSeed;
+  std::string out = "bench-jit";
+  std::size_t memoryCycles = 100000;
+};
+
+void parseDepths(const std::string& text, jit::Figure3Options& options) {
+  int lo = 0, hi = 0;
+  char dash = 0;
+  std::istringstream in(text);
+  if (!(in >> lo)) throw InputError("depths must look like 2-8 or 5", "--depths " + text);
+  hi = lo;
+  if (in >> dash) {
+    if (dash != '-' || !(in >> hi)) throw InputError("depths must look like 2-8", "--depths");
+  }
+  in >> std::ws;
+  if (!in.eof() || lo < 1 || hi < lo || hi > 16) {
+    throw InputError("depths must be a range within 1-16", "--depths " + text);
+  }
+  options.minDepth = lo;
+  options.maxDepth = hi;
+}
+
+// Writes via a temporary file and a rename, so a failed run leaves no half-written output.
+void writeFile(const fs::path& path, const std::string& text) {
+  const fs::path tmp = path.string() + ".tmp";
+  {
+    std::ofstream file(tmp);
+    file << text;
+    if (!file) throw InputError("cannot write", tmp.string());
+  }
+  fs::rename(tmp, path);
+}
+
+std::string number(double x) {
+  if (std::isnan(x)) return "";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g", x);
+  return buffer;
+}
+
+std::string csv(const std::vector<Figure3Row>& rows, BenchSet set) {
+  std::string text = "depth,nodes,method,ns_per_call,compile_us\n";
+  for (const auto& r : rows) {
+    if (r.set != set) continue;
+    text += std::to_string(r.depth) + "," + number(r.nodes) + "," + r.method + "," +
+            number(r.nsPerCall) + "," + number(r.compileUs) + "\n";
+  }
+  return text;
+}
+
+using Table = std::map<std::pair<int, int>, std::map<std::string, Figure3Row>>;
+
+Table tabulate(const std::vector<Figure3Row>& rows) {
+  Table table;
+  for (const auto& r : rows) table[{static_cast<int>(r.set), r.depth}][r.method] = r;
+  return table;
+}
+
+double ns(const Table& t, BenchSet set, int depth, const std::string& method) {
+  const auto it = t.find({static_cast<int>(set), depth});
+  if (it == t.end()) return NAN;
+  const auto m = it->second.find(method);
+  return m == it->second.end() ? NAN : m->second.nsPerCall;
+}
+
+void plot(const fs::path& dir, const Table& table, const jit::Figure3Options& o) {
+  std::string data =
+      "# depth, speed-up over the tree interpreter: interp jit aot batch "
+      "(arithmetic), then the same (unary)\n";
+  for (int d = o.minDepth; d <= o.maxDepth; ++d) {
+    data += std::to_string(d);
+    for (BenchSet set : {BenchSet::Arithmetic, BenchSet::Unary}) {
+      const double tree = ns(table, set, d, "tree");
+      for (const char* m : {"interp", "jit", "aot", "batch"}) {
+        const double x = tree / ns(table, set, d, m);
+        data += " " + (std::isnan(x) ? std::string("NaN") : number(x));
+      }
+    }
+    data += "\n";
+  }
+  writeFile(dir / "jit_speedup.dat", data);
+  std::string script;
+  for (const auto& [terminal, file] :
+       {std::pair<std::string, std::string>{"pngcairo size 900,600", "jit.png"},
+        {"svg size 900,600", "jit.svg"}}) {
+    script += "set terminal " + terminal + "\nset output '" + (dir / file).string() + "'\n";
+    script +=
+        "set title 'Speed-up over the tree-walking interpreter (Figure 3 of Girgin & Preux)'\n"
+        "set xlabel 'depth of the complete tree'\nset ylabel 'speed-up'\nset logscale y\n"
+        "set key top left\nset grid\nset datafile missing 'NaN'\n"
+        "plot '" +
+        (dir / "jit_speedup.dat").string() +
+        "' "
+        "u 1:3 w lp lw 2 lc 1 t 'jit {+,-,*,/}', '' u 1:4 w lp lw 2 lc 2 t 'aot {+,-,*,/}', "
+        "'' u 1:5 w lp lw 2 lc 3 t 'batch {+,-,*,/}', '' u 1:2 w lp lw 2 lc 4 t 'interp "
+        "{+,-,*,/}', "
+        "'' u 1:7 w lp dt 2 lc 1 t 'jit +sin,cos,sqrt', '' u 1:8 w lp dt 2 lc 2 t 'aot "
+        "+sin,cos,sqrt', "
+        "'' u 1:9 w lp dt 2 lc 3 t 'batch +sin,cos,sqrt', '' u 1:6 w lp dt 2 lc 4 t 'interp "
+        "+sin,cos,sqrt', "
+        "'-' w p pt 7 ps 2 lc 7 t 'paper, GNU Lightning (about 75x at depth 8)'\n8 75\ne\n"
+        "unset output\n";
+  }
+  writeFile(dir / "jit.gp", script);
+  const std::string command = "gnuplot '" + (dir / "jit.gp").string() + "'";
+  if (std::system(command.c_str()) != 0) {
+    std::fprintf(stderr, "warning: gnuplot failed; the plot script is %s\n",
+                 (dir / "jit.gp").string().c_str());
+  }
+}
+
+std::string summary(const Table& t, const jit::Figure3Options& o, const jit::MemoryCheck& mem) {
+  std::ostringstream s;
+  s << "gpfd bench jit: seed " << o.seed << ", " << o.calls << " calls, " << o.runs << " runs\n";
+  for (BenchSet set : {BenchSet::Arithmetic, BenchSet::Unary}) {
+    s << "\n"
+      << jit::benchSetName(set) << " set\n"
+      << "depth nodes   tree/jit  tree/interp  jit/aot  jit/batch  compile_us\n";
+    for (int d = o.minDepth; d <= o.maxDepth; ++d) {
+      const auto it = t.find({static_cast<int>(set), d});
+      if (it == t.end()) continue;
+      const double jitNs = ns(t, set, d, "jit");
+      char line[160];
+      std::snprintf(line, sizeof line, "%5d %6.0f %9.2f %11.2f %8.3f %10.2f %11.2f\n", d,
+                    it->second.at("jit").nodes, ns(t, set, d, "tree") / jitNs,
+                    ns(t, set, d, "tree") / ns(t, set, d, "interp"), jitNs / ns(t, set, d, "aot"),
+                    jitNs / ns(t, set, d, "batch"), it->second.at("jit").compileUs);
+      s << line;
+    }
+  }
+  const auto compileAt = [&](int d) {
+    const auto it = t.find({static_cast<int>(BenchSet::Arithmetic), d});
+    return it == t.end() ? NAN : it->second.at("jit").compileUs;
+  };
+  s << "\ncompile time, 63 nodes (depth 6): " << number(compileAt(6))
+    << " us; 255 nodes (depth 8): " << number(compileAt(8)) << " us; ratio "
+    << number(compileAt(8) / compileAt(6)) << "\n";
+  if (mem.cycles > 0) {
+    s << "resident memory over " << mem.cycles << " compile/release cycles: " << mem.rssBeforeKiB
+      << " KiB -> " << mem.rssAfterKiB << " KiB (" << (mem.rssAfterKiB - mem.rssBeforeKiB)
+      << " KiB)\n";
+  }
+  return s.str();
+}
+
+int runBenchJit(const BenchJitArgs& args) {
+  jit::Figure3Options options;
+  parseDepths(args.depths, options);
+  if (args.calls < 1) throw InputError("calls must be positive", "--calls");
+  if (args.runs < 1) throw InputError("runs must be positive", "--runs");
+  options.calls = args.calls;
+  options.runs = args.runs;
+  options.seed = args.seed;
+  const fs::path dir(args.out);
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError("cannot create the output directory", "--out " + args.out);
+
+  // AOT rows only for the seed the reference code was generated with.
+  jit::AotLookup aot;
+  if (args.seed == jit::aotSeed()) {
+    aot = [](BenchSet set, int depth, int run) -> jit::ScalarFunction {
+      for (const auto& f : jit::aotFunctions()) {
+        if (f.set == set && f.depth == depth && f.run == run) return f.function;
+      }
+      return nullptr;
+    };
+  }
+  const auto rows = jit::runFigure3(options, aot);
+  const Table table = tabulate(rows);
+  writeFile(dir / "jit.csv", csv(rows, BenchSet::Arithmetic));
+  writeFile(dir / "jit_unary.csv", csv(rows, BenchSet::Unary));
+  const jit::MemoryCheck memory =
+      args.memoryCycles > 0 ? jit::measureCompileReleaseMemory(args.memoryCycles, args.seed)
+                            : jit::MemoryCheck{};
+  const std::string text = summary(table, options, memory);
+  writeFile(dir / "jit_summary.txt", text);
+  plot(dir, table, options);
+  std::fputs(text.c_str(), stdout);
+  return 0;
+}
+
+const CommandRegistration registration{
+    "bench", [](CLI::App& app) -> std::function<int()> {
+      auto* bench = app.add_subcommand("bench", "Benchmarks of gpfd's components");
+      bench->require_subcommand(1);
+      auto args = std::make_shared<BenchJitArgs>();
+      auto* jitCmd = bench->add_subcommand(
+          "jit",
+          "Figure 3: feature-function speed of tree interpreter, interpreter, JIT, AOT, batch");
+      jitCmd->add_option("--depths", args->depths, "Tree depths, e.g. 2-8")->capture_default_str();
+      jitCmd->add_option("--calls", args->calls, "Calls per function and method")
+          ->capture_default_str();
+      jitCmd->add_option("--runs", args->runs, "Random functions per depth, averaged")
+          ->capture_default_str();
+      jitCmd->add_option("--seed", args->seed, "Seed; the default has AOT reference code")
+          ->capture_default_str();
+      jitCmd->add_option("--out", args->out, "Output directory")->capture_default_str();
+      jitCmd
+          ->add_option("--memory-cycles", args->memoryCycles,
+                       "Compile/release cycles of the resident-memory check (0: skip)")
+          ->capture_default_str();
+      return [args, jitCmd]() { return jitCmd->parsed() ? runBenchJit(*args) : 2; };
+    }};
+
+}  // namespace
+}  // namespace gpfd::app
