@@ -93,8 +93,8 @@ struct GameOutcome {
 
 // Plays one greedy game with `weights`; records the afterstates into `trajectory` when given.
 GameOutcome playGame(AfterstateProblem& problem, FeaturePipeline& features,
-                     const Eigen::VectorXd& weights, std::int64_t maxMoves, Rng& rng,
-                     std::vector<double>& candidatePhi, Trajectory* trajectory) {
+                     const Eigen::VectorXd& weights, std::int64_t maxMoves, bool avoidEnding,
+                     Rng& rng, std::vector<double>& candidatePhi, Trajectory* trajectory) {
   GameOutcome outcome;
   const std::size_t dim = features.dim();
   if (trajectory) trajectory->moves = 0;
@@ -119,11 +119,13 @@ GameOutcome playGame(AfterstateProblem& problem, FeaturePipeline& features,
                                : Eigen::Map<const Eigen::VectorXd>(candidatePhi.data() + c * dim,
                                                                    static_cast<Eigen::Index>(dim))
                                      .dot(weights);
-      const double score = view.rewards[c] + value;
+      double score = view.rewards[c] + value;
       if (!std::isfinite(score)) {
         outcome.ok = false;
         return outcome;
       }
+      // Avoid: ending moves rank below every other, in their own order among themselves.
+      if (avoidEnding && view.ends[c]) score = view.rewards[c] - 1e300;
       if (score > bestScore) {
         bestScore = score;
         best = c;
@@ -174,6 +176,7 @@ LearningCurve trainLambdaPolicyIteration(AfterstateProblem& problem, const jit::
   for (std::size_t j = 0; j < config.initialWeights.size(); ++j) {
     weights[static_cast<Eigen::Index>(j)] = config.initialWeights[j];
   }
+  const bool avoid = config.gameOver == LambdaPolicyIterationConfig::GameOverChoice::Avoid;
   LeastSquaresAccumulator fit(static_cast<Eigen::Index>(dim));
   Eigen::VectorXd fitted;
   Trajectory trajectory;
@@ -191,8 +194,9 @@ LearningCurve trainLambdaPolicyIteration(AfterstateProblem& problem, const jit::
     fit.clear();
     double sum = 0.0;
     for (int g = 0; g < config.gamesPerIteration; ++g) {
-      const GameOutcome outcome = playGame(problem, features, weights, config.maxMovesPerGame, rng,
-                                           candidatePhi, fitting ? &trajectory : nullptr);
+      const GameOutcome outcome =
+          playGame(problem, features, weights, config.maxMovesPerGame, avoid, rng, candidatePhi,
+                   fitting ? &trajectory : nullptr);
       ++curve.episodes;
       curve.steps += outcome.moves;
       if (!outcome.ok || !std::isfinite(outcome.total)) {
@@ -212,6 +216,7 @@ LearningCurve trainLambdaPolicyIteration(AfterstateProblem& problem, const jit::
     curve.points.push_back({iteration, curve.episodes, curve.steps,
                             sum / static_cast<double>(config.gamesPerIteration)});
     exportWeights();
+    if (config.onPoint) config.onPoint(curve.points.back());
     if (!fitting || fit.samples() == 0) {
       if (fitting) continue;  // Every game ended at once: nothing to fit, keep the weights.
       break;
@@ -246,11 +251,12 @@ GreedyPlayResult playGreedy(AfterstateProblem& problem, const jit::FeatureMap& m
   const Eigen::Map<const Eigen::VectorXd> w(weights.values.data(), static_cast<Eigen::Index>(dim));
   const Eigen::VectorXd r = w;
   std::vector<double> candidatePhi;
+  const bool avoid = config.gameOver == LambdaPolicyIterationConfig::GameOverChoice::Avoid;
   GreedyPlayResult result;
   double sum = 0.0;
   for (int g = 0; g < games; ++g) {
     const GameOutcome outcome =
-        playGame(problem, features, r, config.maxMovesPerGame, rng, candidatePhi, nullptr);
+        playGame(problem, features, r, config.maxMovesPerGame, avoid, rng, candidatePhi, nullptr);
     result.moves += outcome.moves;
     if (!outcome.ok) {
       result.diverged = true;

@@ -118,6 +118,7 @@ LearningCurve trainPolicyGradient(env::Environment& env, const jit::FeatureMap& 
     curve.points.push_back(
         {update, curve.episodes, curve.steps, sum / static_cast<double>(config.episodesPerUpdate)});
     exportWeights(policy, features, curve.weights);
+    if (config.onPoint) config.onPoint(curve.points.back());
     if (update == config.updates) break;
     if (config.maxTotalSteps > 0 && curve.steps >= config.maxTotalSteps) break;
     estimator.gradient(gradient);

@@ -17,8 +17,7 @@ class LinearBandit final : public env::Environment {
  public:
   explicit LinearBandit(double slope = 1.0, double offset = 0.0) : slope_(slope), offset_(offset) {}
   std::string name() const override { return "linear-bandit"; }
-  // No `override`: Environment::params() is being added to the interface concurrently.
-  env::Params params() const { return {}; }
+  env::Params params() const override { return {}; }
   const std::vector<std::string>& stateNames() const override { return names_; }
   env::ActionSpace actionSpace() const override {
     env::ActionSpace space;
@@ -51,8 +50,7 @@ class Corridor final : public env::Environment {
  public:
   explicit Corridor(int length = 5, int limit = 50) : length_(length), limit_(limit) {}
   std::string name() const override { return "corridor"; }
-  // No `override`: Environment::params() is being added to the interface concurrently.
-  env::Params params() const { return {}; }
+  env::Params params() const override { return {}; }
   const std::vector<std::string>& stateNames() const override { return names_; }
   env::ActionSpace actionSpace() const override {
     env::ActionSpace space;
@@ -84,8 +82,7 @@ class Corridor final : public env::Environment {
 class PoisonedEnv final : public env::Environment {
  public:
   std::string name() const override { return "poisoned"; }
-  // No `override`: Environment::params() is being added to the interface concurrently.
-  env::Params params() const { return {}; }
+  env::Params params() const override { return {}; }
   const std::vector<std::string>& stateNames() const override { return names_; }
   env::ActionSpace actionSpace() const override {
     env::ActionSpace space;

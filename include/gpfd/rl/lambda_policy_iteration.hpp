@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -26,9 +27,18 @@ struct LambdaPolicyIterationConfig {
   // Moves per game at most (good policies on large boards play very long games). A capped game
   // is not terminal: its last afterstate keeps its own value as target.
   std::int64_t maxMovesPerGame = 100000;
+  // How the greedy choice scores a move that ends the game. Zero (default, BENCHMARKS.md): reward
+  // + 0, literally. Avoid: such a move is taken
+  // only when every move ends the game (a linear J can be negative, e.g. the Bertsekas-Ioffe
+  // start is <= 0 everywhere, and scoring game over as 0 would then make the policy end games on
+  // purpose). Either way the lambda-returns use J(game over) = 0.
+  enum class GameOverChoice { Avoid, Zero };
+  GameOverChoice gameOver = GameOverChoice::Zero;
   // Starting weights over the pipeline's features (bias last); empty: all zero.
   std::vector<double> initialWeights;
   FeatureOptions features{.bias = true, .normalise = false};
+  // Called with each row of the curve as soon as it is complete (progress output); may be empty.
+  std::function<void(const CurvePoint&)> onPoint;
 };
 
 // Plays greedily w.r.t. reward + J(afterstate) (J = 0 for a move that ends the game), fits J to

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 
 #include "gpfd/env/environment.hpp"
 #include "gpfd/jit/feature_map.hpp"
@@ -26,6 +27,8 @@ struct PolicyGradientConfig {
   RpropConfig rprop = RpropConfig::paperLarge();
   PolicyOptions policy;
   FeatureOptions features;
+  // Called with each row of the curve as soon as it is complete (progress output); may be empty.
+  std::function<void(const CurvePoint&)> onPoint;
 };
 
 // Trains from zero weights. The map's inputDim() must equal env.stateDim() (InputError
