@@ -1,0 +1,107 @@
+// Steps per second of the benchmark environments (Google Benchmark). Compare Acrobot and cart-pole
+// with Gymnasium side by side using bench/gymnasium_classic_control.py (see docs/environments.md).
+#include <benchmark/benchmark.h>
+
+#include <string>
+#include <vector>
+
+#include "gpfd/env/environment.hpp"
+#include "gpfd/env/tetris.hpp"
+
+namespace {
+
+using gpfd::Rng;
+using namespace gpfd::env;
+
+// Steps an environment on pre-drawn random actions, resetting at the end of an episode.
+void stepEnvironment(benchmark::State& state, const std::string& name, const Params& params) {
+  auto env = Registry::global().make(name, params);
+  Rng rng(1);
+  env->reset(rng);
+  const std::size_t components = env->actionSpace().components;
+  std::vector<double> actions(4096 * components);
+  for (std::size_t i = 0; i < 4096; ++i) {
+    env->sampleAction(rng, std::span<double>(actions.data() + i * components, components));
+  }
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const StepResult r =
+        env->step(std::span<const double>(actions.data() + (i & 4095) * components, components));
+    benchmark::DoNotOptimize(env->state().data());
+    if (r.terminated || r.truncated) env->reset(rng);
+    ++i;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+void BM_Acrobot(benchmark::State& s) { stepEnvironment(s, "acrobot", {}); }
+void BM_AcrobotDiscrete(benchmark::State& s) {
+  stepEnvironment(s, "acrobot", {{"actions", "discrete"}});
+}
+void BM_CartPole(benchmark::State& s) { stepEnvironment(s, "cartpole", {}); }
+void BM_CartPoleDiscrete(benchmark::State& s) {
+  stepEnvironment(s, "cartpole", {{"actions", "discrete"}});
+}
+void BM_CartPoleClsquare(benchmark::State& s) {
+  stepEnvironment(s, "cartpole", {{"gravity", "9.81"}, {"integrator", "rk4"}, {"substeps", "10"}});
+}
+// Default swimmer step: 10 Euler integration steps of 0.01 s.
+void BM_Swimmer(benchmark::State& s) {
+  stepEnvironment(s, "swimmer", {{"segments", std::to_string(s.range(0))}});
+}
+// One integration step per control step (Euler; RK4), i.e. one / four solves of the system.
+void BM_SwimmerOneEulerStep(benchmark::State& s) {
+  stepEnvironment(s, "swimmer",
+                  {{"segments", std::to_string(s.range(0))}, {"substeps", "1"}, {"dt", "0.01"}});
+}
+void BM_SwimmerOneRk4Step(benchmark::State& s) {
+  stepEnvironment(s, "swimmer", {{"segments", std::to_string(s.range(0))},
+                                 {"substeps", "1"},
+                                 {"dt", "0.01"},
+                                 {"integrator", "rk4"}});
+}
+void BM_TetrisStep(benchmark::State& s) { stepEnvironment(s, "tetris", {}); }
+
+// One decision: every placement of the current piece with its state variables, over boards and
+// pieces from random play.
+void BM_TetrisDecision(benchmark::State& state) {
+  TetrisConfig config;
+  config.rows = static_cast<int>(state.range(0));
+  config.cols = static_cast<int>(state.range(1));
+  Tetris tetris(config);
+  Rng rng(2);
+  std::vector<Tetris> positions;
+  tetris.reset(rng);
+  std::vector<double> action(2);
+  while (positions.size() < 256) {
+    positions.push_back(tetris);
+    tetris.sampleAction(rng, action);
+    if (tetris.step(action).terminated) tetris.reset(rng);
+  }
+  TetrisAfterstates out;
+  std::size_t i = 0, placements = 0;
+  for (auto _ : state) {
+    positions[i & 255].afterstates(out);
+    placements += out.placements.size();
+    benchmark::DoNotOptimize(out.features.data());
+    ++i;
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["placements"] =
+      benchmark::Counter(static_cast<double>(placements) / static_cast<double>(i));
+}
+
+BENCHMARK(BM_Acrobot);
+BENCHMARK(BM_AcrobotDiscrete);
+BENCHMARK(BM_CartPole);
+BENCHMARK(BM_CartPoleDiscrete);
+BENCHMARK(BM_CartPoleClsquare);
+BENCHMARK(BM_Swimmer)->Arg(3)->Arg(5);
+BENCHMARK(BM_SwimmerOneEulerStep)->Arg(3)->Arg(5);
+BENCHMARK(BM_SwimmerOneRk4Step)->Arg(3)->Arg(5);
+BENCHMARK(BM_TetrisStep);
+BENCHMARK(BM_TetrisDecision)->Args({12, 8})->Args({20, 10});
+
+}  // namespace
+
+BENCHMARK_MAIN();
