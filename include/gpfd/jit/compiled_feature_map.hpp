@@ -26,6 +26,9 @@ class CompiledFeatureMap final : public FeatureMap {
   // malformed, reads a variable >= inputDim, or exceeds the limits of program.hpp.
   CompiledFeatureMap(const expr::Genome& genome, std::size_t inputDim);
   CompiledFeatureMap(const expr::Genome& genome, std::size_t inputDim, CompileOptions options);
+  // Not copyable or movable: the entry points point into the code this object owns.
+  CompiledFeatureMap(const CompiledFeatureMap&) = delete;
+  CompiledFeatureMap& operator=(const CompiledFeatureMap&) = delete;
 
   std::size_t inputDim() const override { return interpreter_.inputDim(); }
   std::size_t outputDim() const override { return interpreter_.outputDim(); }
