@@ -99,6 +99,18 @@ void Evolution::run(const std::function<bool(const GenerationStats&)>& onGenerat
   }
 }
 
+EvolutionState Evolution::state() const {
+  return {generation_, population_, rng_.state(), operatorCounts_};
+}
+
+void Evolution::restore(const EvolutionState& state) {
+  generation_ = state.generation;
+  population_ = state.population;
+  rng_.setState(state.rng);
+  operatorCounts_ = state.operatorCounts;
+  operatorCounts_.resize(kOperatorCount, 0);
+}
+
 const Individual& Evolution::best() const {
   return *std::max_element(
       population_.begin(), population_.end(),

@@ -63,6 +63,14 @@ struct GenerationStats {
   Individual bestIndividual;
 };
 
+// Everything a checkpoint needs to continue a run exactly.
+struct EvolutionState {
+  int generation = -1;
+  std::vector<Individual> population;
+  Rng::State rng{};
+  std::vector<long> operatorCounts;
+};
+
 // Contract: the run is a pure function of (config, space, fitness); evaluation seeds are
 // deriveSeed(config.seed, kEvaluationStream, generation, index).
 class Evolution {
@@ -87,6 +95,10 @@ class Evolution {
   const SearchSpace& space() const { return space_; }
   // Operator applications so far, in the order of Operator (for frequency checks).
   const std::vector<long>& operatorCounts() const { return operatorCounts_; }
+
+  EvolutionState state() const;
+  // Continues from a saved state: the next step() breeds generation state.generation + 1.
+  void restore(const EvolutionState& state);
 
  private:
   const Individual& tournament();

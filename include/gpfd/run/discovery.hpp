@@ -1,0 +1,64 @@
+// run: a feature-discovery run (`gpfd evolve`): GP whose fitness is learning performance in
+// short trials, with its results directory, per-generation checkpoints and exact resume.
+//
+// Results directory:
+//   config.toml              the fully resolved config
+//   run.json                 seed, version, threads
+//   generations.csv          one row per generation
+//   best/generation-NNNN.features   the best genome of each generation
+//   best.features            the best features so far (the final ones at the end)
+//   checkpoint.json          everything needed to continue exactly
+// Every file is written atomically; a generation's files are written before its checkpoint.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "gpfd/run/checkpoint.hpp"
+#include "gpfd/run/experiment_config.hpp"
+
+namespace gpfd::run {
+
+struct DiscoveryOptions {
+  std::string outDir;
+  int threads = 0;        // 0: all cores. Never changes results.
+  std::string version;    // gpfd's version, recorded and checked on resume.
+  std::string revision;   // Recorded only.
+};
+
+class Discovery {
+ public:
+  // A fresh run in options.outDir, which must not already hold a run. Validates everything
+  // before creating anything; InputError otherwise.
+  static std::unique_ptr<Discovery> start(const ExperimentConfig& config,
+                                          const DiscoveryOptions& options);
+  // Continues the run in options.outDir from its checkpoint, with its stored config. When
+  // `expected` is given it must equal the stored config. `generations` may extend the run.
+  // InputError for a missing or corrupt checkpoint, another version, or another config.
+  static std::unique_ptr<Discovery> resume(const DiscoveryOptions& options,
+                                           const std::optional<ExperimentConfig>& expected,
+                                           std::optional<int> generations);
+  ~Discovery();
+
+  // Runs generations until the configured number exist or `stop` becomes true (checked after
+  // each generation, once its checkpoint is written). `onGeneration` sees every new record.
+  void run(const std::function<void(const GenerationRecord&)>& onGeneration,
+           const std::atomic<bool>& stop);
+
+  const ExperimentConfig& config() const;
+  const std::vector<GenerationRecord>& history() const;
+  bool finished() const;
+  // Evaluations completed in the current generation (for progress displays; any thread).
+  long progress() const;
+  int populationSize() const;
+
+ private:
+  struct State;
+  explicit Discovery(std::unique_ptr<State> state);
+  std::unique_ptr<State> s_;
+};
+
+}  // namespace gpfd::run

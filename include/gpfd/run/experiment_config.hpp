@@ -1,0 +1,73 @@
+// run: the configuration of a feature-discovery experiment (what `gpfd evolve` and
+// `gpfd assess` read from TOML), as a plain struct with named, defaulted fields.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "gpfd/gp/evolution.hpp"
+#include "gpfd/gp/search_space.hpp"
+
+namespace gpfd::run {
+
+// How one short learning trial is scored from its learning curve (the mean returns of its rows).
+enum class TrialMeasure {
+  Mean,          // Mean over all rows: rewards learning fast (the area under the curve).
+  Final,         // The last row.
+  LastFraction,  // Mean over the last `lastFraction` of the rows.
+};
+
+struct ExperimentConfig {
+  std::string name = "cartpole";
+  std::uint64_t seed = 1;
+
+  std::string env = "cartpole";
+  std::map<std::string, std::string> envParams;
+
+  std::string learner = "pg";  // pg | lpi
+  // The short-trial budget and settings of the learner (rl::apply*Param keys).
+  std::map<std::string, std::string> learnerParams;
+
+  int trials = 5;  // K short learning trials per fitness evaluation (the paper: 4-10).
+  TrialMeasure measure = TrialMeasure::Mean;
+  double lastFraction = 0.25;
+  bool withOriginal = false;  // The learner sees discovered + original variables.
+
+  std::string primitives = "control";
+  std::vector<double> constants{1.0, 2.0};
+  bool ephemeral = true;
+  expr::GenomeLimits limits;
+  int initMinDepth = 2;
+  int initMaxDepth = 4;
+  int initMaxFeatures = 4;
+  int mutationDepth = 3;
+
+  gp::GpConfig gp;  // gp.seed is ignored: `seed` above is the run's seed.
+
+  int assessRuns = 20;  // Independent long trainings per feature set in `gpfd assess`.
+  // The long budget: learner settings that override learnerParams for assessment.
+  std::map<std::string, std::string> assessParams;
+};
+
+// Reads a config from TOML text; `source` names it in errors. Unknown keys (with a suggestion),
+// type errors and out-of-range values throw InputError at file:line:column. `overrides` are
+// `key=value` assignments (`gp.population=50`) applied before reading.
+ExperimentConfig parseExperimentConfig(const std::string& text, const std::string& source,
+                                       const std::vector<std::string>& overrides = {});
+ExperimentConfig loadExperimentConfig(const std::string& path,
+                                      const std::vector<std::string>& overrides = {});
+// The fully resolved config as TOML (every field, defaults included); parsing it gives the same
+// config back.
+std::string formatExperimentConfig(const ExperimentConfig& config);
+
+// Checks what the TOML types cannot: the environment and its parameters exist, the learner
+// takes its parameters, the primitive set is known, the limits are consistent. InputError
+// otherwise.
+void validate(const ExperimentConfig& config);
+
+gp::SearchSpace searchSpace(const ExperimentConfig& config, int variableCount);
+gp::GpConfig gpConfig(const ExperimentConfig& config);
+
+}  // namespace gpfd::run

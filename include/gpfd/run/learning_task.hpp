@@ -1,0 +1,50 @@
+// run: fitness from learning trials. A LearningTask makes, from an experiment's config, a fresh
+// environment and the learner for each learning run, and scores short trials.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gpfd/expr/genome.hpp"
+#include "gpfd/jit/feature_map.hpp"
+#include "gpfd/rl/learning_curve.hpp"
+#include "gpfd/run/experiment_config.hpp"
+#include "gpfd/util/rng.hpp"
+
+namespace gpfd::run {
+
+class LearningTask {
+ public:
+  // `budget` selects the learner settings: the short trials of GP fitness, or the long training
+  // of assessment (learner.params overridden by assess.params).
+  enum class Budget { Trial, Assessment };
+  LearningTask(const ExperimentConfig& config, Budget budget);
+
+  const ExperimentConfig& config() const { return config_; }
+  const std::vector<std::string>& stateNames() const { return stateNames_; }
+  std::size_t stateDim() const { return stateNames_.size(); }
+
+  // One learning run on a fresh environment, seeing states through `map` (inputDim() ==
+  // stateDim()). Thread-safe: shares nothing between calls.
+  rl::LearningCurve train(const jit::FeatureMap& map, Rng& rng) const;
+  // The trial's performance under the configured measure; -inf when the run diverged or is empty.
+  double score(const rl::LearningCurve& curve) const;
+
+ private:
+  ExperimentConfig config_;
+  std::map<std::string, std::string> learnerParams_;
+  std::vector<std::string> stateNames_;
+};
+
+// The features a learner sees for a genome: its compiled features, followed by the original
+// state variables when `withOriginal`.
+std::shared_ptr<const jit::FeatureMap> genomeFeatureMap(const expr::Genome& genome,
+                                                        std::size_t stateDim, bool withOriginal);
+
+// The fitness of GP: the mean score of config.trials short trials, trial t seeded from
+// deriveSeed(rng(), t). Any non-finite or diverged trial makes the fitness -inf (worst).
+double trialFitness(const LearningTask& task, const expr::Genome& genome, Rng& rng);
+
+}  // namespace gpfd::run
