@@ -4,14 +4,13 @@
 
 #include <chrono>
 #include <csignal>
-#include <filesystem>
 #include <optional>
 #include <thread>
 
 #include "command.hpp"
+#include "config_loading.hpp"
 #include "gpfd/run/discovery.hpp"
 #include "gpfd/util/error.hpp"
-#include "gpfd/builtin_configs.hpp"
 #include "gpfd/version.hpp"
 
 namespace gpfd::app {
@@ -39,7 +38,8 @@ struct EvolveOptions {
 
 std::string duration(double seconds) {
   if (seconds < 90) return fmt::format("{:.0f}s", seconds);
-  if (seconds < 5400) return fmt::format("{:.0f}m{:02.0f}s", std::floor(seconds / 60), std::fmod(seconds, 60));
+  if (seconds < 5400)
+    return fmt::format("{:.0f}m{:02.0f}s", std::floor(seconds / 60), std::fmod(seconds, 60));
   return fmt::format("{:.0f}h{:02.0f}m", std::floor(seconds / 3600), std::fmod(seconds / 60, 60));
 }
 
@@ -54,32 +54,16 @@ std::vector<std::string> overrides(const EvolveOptions& o) {
   return all;
 }
 
-// The default run when no config is given.
-constexpr std::string_view kDefaultConfig = "cartpole-quick";
-
-// CONFIG is a file, or else the name of a shipped config (configs/NAME.toml).
-run::ExperimentConfig loadConfig(const std::string& config, const std::vector<std::string>& extra) {
-  const std::string name = config.empty() ? std::string(kDefaultConfig) : config;
-  if (config.empty() || !std::filesystem::exists(config)) {
-    for (const auto& builtin : kBuiltinConfigs) {
-      if (builtin.name == name) {
-        return run::parseExperimentConfig(std::string(builtin.text), "configs/" + name + ".toml",
-                                          extra);
-      }
-    }
-  }
-  return run::loadExperimentConfig(config, extra);
-}
-
 int evolve(const EvolveOptions& o) {
   run::DiscoveryOptions options{o.resume.empty() ? o.out : o.resume, o.threads, kVersion,
                                 kRevision};
   std::unique_ptr<run::Discovery> discovery;
   if (!o.resume.empty()) {
     if (!o.env.empty() || o.seed || o.population || !o.sets.empty()) {
-      throw InputError("--resume continues with the stored config; only --generations, "
-                       "--threads and --quiet may be given",
-                       "--resume " + o.resume);
+      throw InputError(
+          "--resume continues with the stored config; only --generations, "
+          "--threads and --quiet may be given",
+          "--resume " + o.resume);
     }
     std::optional<run::ExperimentConfig> expected;
     if (!o.config.empty()) expected = loadConfig(o.config, {});
@@ -93,9 +77,10 @@ int evolve(const EvolveOptions& o) {
   const bool terminal = ::isatty(STDOUT_FILENO) != 0;
   const auto& config = discovery->config();
   if (!o.quiet) {
-    fmt::print("gpfd evolve: {} ({} on {}), population {}, generations {}, seed {}, results in {}\n",
-               config.name, config.learner, config.env, config.gp.population,
-               config.gp.generations, config.seed, options.outDir);
+    fmt::print(
+        "gpfd evolve: {} ({} on {}), population {}, generations {}, seed {}, results in {}\n",
+        config.name, config.learner, config.env, config.gp.population, config.gp.generations,
+        config.seed, options.outDir);
     std::fflush(stdout);
   }
   std::signal(SIGINT, onInterrupt);
@@ -110,9 +95,8 @@ int evolve(const EvolveOptions& o) {
         std::this_thread::sleep_for(std::chrono::milliseconds(500));
         const double elapsed =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        fmt::print("\r\033[K  generation {}: {}/{} evaluated, {}",
-                   discovery->history().size(), discovery->progress(),
-                   discovery->populationSize(), duration(elapsed));
+        fmt::print("\r\033[K  generation {}: {}/{} evaluated, {}", discovery->history().size(),
+                   discovery->progress(), discovery->populationSize(), duration(elapsed));
         std::fflush(stdout);
       }
     });
@@ -124,11 +108,11 @@ int evolve(const EvolveOptions& o) {
         if (o.quiet) return;
         const int remaining = config.gp.generations - 1 - r.generation;
         const double perGeneration = total / static_cast<double>(r.generation + 1);
-        fmt::print("{}gen {:3d}  best {:.6g}  mean {:.6g}  features {:.2f}  size {:.1f}  "
-                   "evals {} (+{} cached)  {}  ETA {}\n",
-                   terminal ? "\r\033[K" : "", r.generation, r.best, r.mean, r.meanFeatures,
-                   r.meanSize, r.evaluations, r.cacheHits, duration(r.seconds),
-                   duration(perGeneration * remaining));
+        fmt::print(
+            "{}gen {:3d}  best {:.6g}  mean {:.6g}  features {:.2f}  size {:.1f}  "
+            "evals {} (+{} cached)  {}  ETA {}\n",
+            terminal ? "\r\033[K" : "", r.generation, r.best, r.mean, r.meanFeatures, r.meanSize,
+            r.evaluations, r.cacheHits, duration(r.seconds), duration(perGeneration * remaining));
         std::fflush(stdout);
       },
       interrupted);
@@ -137,7 +121,8 @@ int evolve(const EvolveOptions& o) {
   if (terminal && !o.quiet) fmt::print("\r\033[K");
 
   if (!discovery->finished()) {
-    fmt::print(stderr, "interrupted after generation {}; the checkpoint is written. Continue with: "
+    fmt::print(stderr,
+               "interrupted after generation {}; the checkpoint is written. Continue with: "
                "gpfd evolve --resume {}\n",
                discovery->history().back().generation, options.outDir);
     return 130;
@@ -149,25 +134,29 @@ int evolve(const EvolveOptions& o) {
   return 0;
 }
 
-const CommandRegistration registration{"evolve", [](CLI::App& app) {
-  auto* cmd = app.add_subcommand(
-      "evolve", "Discover features with GP; fitness = learning performance in short trials");
-  auto o = std::make_shared<EvolveOptions>();
-  cmd->add_option("config", o->config, "Experiment config: a TOML file or a shipped config name (configs/NAME.toml); default: cartpole-quick");
-  cmd->add_option("--env", o->env, "Environment (overrides env.name)");
-  cmd->add_option("--seed", o->seed, "Random seed (overrides seed)");
-  cmd->add_option("--threads", o->threads, "Worker threads (0: all cores); never changes results")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--population", o->population, "Population size (overrides gp.population)");
-  cmd->add_option("--generations", o->generations,
-                  "Generations (overrides gp.generations; may extend a resumed run)");
-  cmd->add_option("--out", o->out, "Results directory (default results/<name>)");
-  cmd->add_option("--resume", o->resume, "Continue the run in this results directory");
-  cmd->add_option("--set", o->sets, "Override any config key: --set gp.elitism=0.2")
-      ->allow_extra_args(false);
-  cmd->add_flag("--quiet", o->quiet, "No progress output");
-  return [o] { return evolve(*o); };
-}};
+const CommandRegistration registration{
+    "evolve", [](CLI::App& app) {
+      auto* cmd = app.add_subcommand(
+          "evolve", "Discover features with GP; fitness = learning performance in short trials");
+      auto o = std::make_shared<EvolveOptions>();
+      cmd->add_option("config", o->config,
+                      "Experiment config: a TOML file or a shipped config name "
+                      "(configs/NAME.toml); default: cartpole-quick");
+      cmd->add_option("--env", o->env, "Environment (overrides env.name)");
+      cmd->add_option("--seed", o->seed, "Random seed (overrides seed)");
+      cmd->add_option("--threads", o->threads,
+                      "Worker threads (0: all cores); never changes results")
+          ->check(CLI::NonNegativeNumber);
+      cmd->add_option("--population", o->population, "Population size (overrides gp.population)");
+      cmd->add_option("--generations", o->generations,
+                      "Generations (overrides gp.generations; may extend a resumed run)");
+      cmd->add_option("--out", o->out, "Results directory (default results/<name>)");
+      cmd->add_option("--resume", o->resume, "Continue the run in this results directory");
+      cmd->add_option("--set", o->sets, "Override any config key: --set gp.elitism=0.2")
+          ->allow_extra_args(false);
+      cmd->add_flag("--quiet", o->quiet, "No progress output");
+      return [o] { return evolve(*o); };
+    }};
 
 }  // namespace
 }  // namespace gpfd::app

@@ -83,7 +83,8 @@ void TomlReader::read(const std::string& section, const std::string& key, std::s
   if (!choices.empty() && std::find(choices.begin(), choices.end(), value) == choices.end()) {
     std::string list;
     for (const auto& c : choices) list += (list.empty() ? "" : ", ") + c;
-    fail(section, key, "must be one of " + list + ", not '" + value + "'" + didYouMean(value, choices));
+    fail(section, key,
+         "must be one of " + list + ", not '" + value + "'" + didYouMean(value, choices));
   }
   out = value;
 }
@@ -146,9 +147,9 @@ void TomlReader::read(const std::string& section, const std::string& key,
 
 void TomlReader::readParams(const std::string& section, std::map<std::string, std::string>& out) {
   const std::size_t dot = section.rfind('.');
-  const toml::node* node = dot == std::string::npos ? find("", section)
-                                                    : find(section.substr(0, dot),
-                                                           section.substr(dot + 1));
+  const toml::node* node = dot == std::string::npos
+                               ? find("", section)
+                               : find(section.substr(0, dot), section.substr(dot + 1));
   if (node == nullptr) return;
   const toml::table* table = node->as_table();
   if (table == nullptr) fail("", section, "must be a table");
@@ -183,7 +184,8 @@ void TomlReader::finish() const {
         for (const auto& known : known_) {
           const std::size_t dot = known.rfind('.');
           const std::string parent = dot == std::string::npos ? "" : known.substr(0, dot);
-          if (parent == prefix) siblings.push_back(dot == std::string::npos ? known : known.substr(dot + 1));
+          if (parent == prefix)
+            siblings.push_back(dot == std::string::npos ? known : known.substr(dot + 1));
         }
         throw InputError("unknown key '" + full + "'" + didYouMean(std::string(k.str()), siblings),
                          place(source_, &v));
@@ -238,9 +240,9 @@ toml::table parseToml(const std::string& text, const std::string& source) {
   try {
     return toml::parse(text, source);
   } catch (const toml::parse_error& e) {
-    throw InputError("invalid TOML: " + std::string(e.description()),
-                     fmt::format("{}:{}:{}", source, e.source().begin.line,
-                                 e.source().begin.column));
+    throw InputError(
+        "invalid TOML: " + std::string(e.description()),
+        fmt::format("{}:{}:{}", source, e.source().begin.line, e.source().begin.column));
   }
 }
 

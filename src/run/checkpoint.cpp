@@ -25,7 +25,8 @@ double number(const json& j) {
 // A genome as its features' S-expressions with variables as x[i]: exact and compact.
 json genomeJson(const expr::Genome& g) {
   json features = json::array();
-  for (std::size_t k = 0; k < g.featureCount(); ++k) features.push_back(expr::toSexpr(g.feature(k), {}));
+  for (std::size_t k = 0; k < g.featureCount(); ++k)
+    features.push_back(expr::toSexpr(g.feature(k), {}));
   return features;
 }
 
@@ -50,20 +51,26 @@ std::string formatCheckpoint(const Checkpoint& c) {
   for (const auto& [key, value] : c.cache) cache.push_back({key, number(value)});
   json history = json::array();
   for (const auto& r : c.history) {
-    history.push_back({{"generation", r.generation}, {"best", number(r.best)},
-                       {"mean", number(r.mean)}, {"median", number(r.median)},
-                       {"mean_size", r.meanSize}, {"mean_features", r.meanFeatures},
-                       {"evaluations", r.evaluations}, {"cache_hits", r.cacheHits},
-                       {"seconds", r.seconds}, {"best_genome", genomeJson(r.bestGenome)}});
+    history.push_back({{"generation", r.generation},
+                       {"best", number(r.best)},
+                       {"mean", number(r.mean)},
+                       {"median", number(r.median)},
+                       {"mean_size", r.meanSize},
+                       {"mean_features", r.meanFeatures},
+                       {"evaluations", r.evaluations},
+                       {"cache_hits", r.cacheHits},
+                       {"seconds", r.seconds},
+                       {"best_genome", genomeJson(r.bestGenome)}});
   }
   const auto& rng = c.state.rng;
   json j = {{"format", kFormat},
             {"version", c.version},
             {"config", c.config},
             {"generation", c.state.generation},
-            {"rng", {{"words", {rng.words[0], rng.words[1], rng.words[2], rng.words[3]}},
-                     {"has_spare", rng.hasSpare},
-                     {"spare", rng.spare}}},
+            {"rng",
+             {{"words", {rng.words[0], rng.words[1], rng.words[2], rng.words[3]}},
+              {"has_spare", rng.hasSpare},
+              {"spare", rng.spare}}},
             {"operator_counts", c.state.operatorCounts},
             {"population", population},
             {"cache", cache},

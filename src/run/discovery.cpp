@@ -56,9 +56,16 @@ struct Discovery::State {
 
   // Writes the generation's files, then the checkpoint (all atomically).
   void persist(const gp::GenerationStats& stats) {
-    GenerationRecord record{stats.generation, stats.best, stats.mean, stats.median,
-                            stats.meanSize, stats.meanFeatures, cache.lastEvaluated(),
-                            cache.lastHits(), stats.seconds, stats.bestIndividual.genome};
+    GenerationRecord record{stats.generation,
+                            stats.best,
+                            stats.mean,
+                            stats.median,
+                            stats.meanSize,
+                            stats.meanFeatures,
+                            cache.lastEvaluated(),
+                            cache.lastHits(),
+                            stats.seconds,
+                            stats.bestIndividual.genome};
     history.push_back(record);
     auto best = featuresFile(stats.bestIndividual);
     best.meta["generation"] = std::to_string(stats.generation);
@@ -77,22 +84,24 @@ std::unique_ptr<Discovery> Discovery::start(const ExperimentConfig& config,
                                             const DiscoveryOptions& options) {
   validate(config);
   if (fs::exists(options.outDir + "/checkpoint.json")) {
-    throw InputError("the directory already holds a run: resume it with --resume, or choose "
-                     "another --out",
-                     options.outDir);
+    throw InputError(
+        "the directory already holds a run: resume it with --resume, or choose "
+        "another --out",
+        options.outDir);
   }
   auto state = std::make_unique<State>(config, options);  // Compiles nothing yet; checks env.
   const bool existed = fs::exists(options.outDir);
   try {
     std::error_code ec;
     fs::create_directories(options.outDir + "/best", ec);
-    if (ec) throw InputError("cannot create the results directory: " + ec.message(), options.outDir);
+    if (ec)
+      throw InputError("cannot create the results directory: " + ec.message(), options.outDir);
     writeFileAtomically(state->path("config.toml"), state->configText);
-    writeFileAtomically(state->path("run.json"),
-                        fmt::format("{{\n \"seed\": {},\n \"version\": \"{}\",\n \"revision\": "
-                                    "\"{}\",\n \"threads\": {}\n}}\n",
-                                    config.seed, options.version, options.revision,
-                                    state->threads.threads()));
+    writeFileAtomically(
+        state->path("run.json"),
+        fmt::format("{{\n \"seed\": {},\n \"version\": \"{}\",\n \"revision\": "
+                    "\"{}\",\n \"threads\": {}\n}}\n",
+                    config.seed, options.version, options.revision, state->threads.threads()));
   } catch (...) {
     // Leave nothing half-made behind.
     std::error_code ignored;
@@ -111,9 +120,9 @@ std::unique_ptr<Discovery> Discovery::resume(const DiscoveryOptions& options,
   }
   Checkpoint checkpoint = parseCheckpoint(readFile(checkpointPath), checkpointPath);
   if (checkpoint.version != options.version) {
-    throw InputError("the checkpoint was written by gpfd " + checkpoint.version + ", this is " +
-                         options.version,
-                     checkpointPath);
+    throw InputError(
+        "the checkpoint was written by gpfd " + checkpoint.version + ", this is " + options.version,
+        checkpointPath);
   }
   ExperimentConfig config = parseExperimentConfig(checkpoint.config, checkpointPath + " (config)");
   if (expected && formatExperimentConfig(*expected) != checkpoint.config) {

@@ -57,7 +57,9 @@ struct Reader {
     r.read(s, k, out, choices);
   }
   void seed(const char* s, const char* k, std::uint64_t& out) { r.read(s, k, out); }
-  void integer(const char* s, const char* k, int& out, long lo, long hi) { r.read(s, k, out, lo, hi); }
+  void integer(const char* s, const char* k, int& out, long lo, long hi) {
+    r.read(s, k, out, lo, hi);
+  }
   void real(const char* s, const char* k, double& out, double lo, double hi) {
     r.read(s, k, out, lo, hi);
   }

@@ -49,8 +49,12 @@ double LearningTask::score(const rl::LearningCurve& curve) const {
   const auto& points = curve.points;
   std::size_t first = 0;
   switch (config_.measure) {
-    case TrialMeasure::Final: first = points.size() - 1; break;
-    case TrialMeasure::Mean: first = 0; break;
+    case TrialMeasure::Final:
+      first = points.size() - 1;
+      break;
+    case TrialMeasure::Mean:
+      first = 0;
+      break;
     case TrialMeasure::LastFraction: {
       const auto count = static_cast<std::size_t>(
           std::ceil(config_.lastFraction * static_cast<double>(points.size())));

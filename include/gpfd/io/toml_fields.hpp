@@ -2,13 +2,13 @@
 // the file, line and column, the full key, and a suggestion for an unknown key.
 #pragma once
 
+#include <toml++/toml.h>
+
 #include <cstdint>
 #include <map>
 #include <set>
 #include <string>
 #include <vector>
-
-#include <toml++/toml.h>
 
 namespace gpfd::io {
 

@@ -36,7 +36,8 @@ std::string formatCheckpoint(const Checkpoint& checkpoint);
 // InputError naming `source` when the text is not a valid checkpoint.
 Checkpoint parseCheckpoint(const std::string& text, const std::string& source);
 
-// generations.csv: generation,best,mean,median,mean_size,mean_features,evaluations,cache_hits,seconds
+// generations.csv:
+// generation,best,mean,median,mean_size,mean_features,evaluations,cache_hits,seconds
 std::string formatGenerationsCsv(const std::vector<GenerationRecord>& history);
 
 }  // namespace gpfd::run

@@ -24,9 +24,9 @@ namespace gpfd::run {
 
 struct DiscoveryOptions {
   std::string outDir;
-  int threads = 0;        // 0: all cores. Never changes results.
-  std::string version;    // gpfd's version, recorded and checked on resume.
-  std::string revision;   // Recorded only.
+  int threads = 0;       // 0: all cores. Never changes results.
+  std::string version;   // gpfd's version, recorded and checked on resume.
+  std::string revision;  // Recorded only.
 };
 
 class Discovery {

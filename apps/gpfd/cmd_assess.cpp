@@ -1,0 +1,137 @@
+// `gpfd assess`: the paper's test protocol for feature sets (long training, N runs, statistics).
+#include <fmt/format.h>
+
+#include <filesystem>
+
+#include "command.hpp"
+#include "config_loading.hpp"
+#include "gpfd/env/environment.hpp"
+#include "gpfd/expr/features_file.hpp"
+#include "gpfd/run/assessment.hpp"
+#include "gpfd/util/error.hpp"
+
+namespace gpfd::app {
+namespace {
+
+struct AssessOptions {
+  std::string env;
+  std::string config;
+  std::vector<std::string> features;
+  bool raw = false;
+  bool withOriginal = false;
+  int runs = 0;
+  int budget = 0;
+  std::vector<std::string> params;
+  std::uint64_t seed = 1;
+  int threads = 0;
+  std::string out;
+  bool quiet = false;
+};
+
+run::ExperimentConfig assessConfig(const AssessOptions& o) {
+  run::ExperimentConfig config;
+  if (!o.config.empty()) {
+    config = loadConfig(o.config, {});
+    if (!o.env.empty() && o.env != config.env) {
+      throw InputError("the environment differs from the config's (" + config.env + ")", o.env);
+    }
+  } else {
+    if (o.env.empty()) throw InputError("give an environment or --config", "gpfd assess");
+    config.env = o.env;
+    config.learner = o.env == "tetris" ? "lpi" : "pg";
+  }
+  const auto& info = env::Registry::global().info(config.env);
+  for (const auto& p : o.params) {
+    const auto eq = p.find('=');
+    if (eq == std::string::npos || eq == 0) throw InputError("expected k=v", "--param " + p);
+    const std::string key = p.substr(0, eq), value = p.substr(eq + 1);
+    bool isEnvParam = false;
+    for (const auto& spec : info.params) isEnvParam = isEnvParam || spec.name == key;
+    (isEnvParam ? config.envParams : config.assessParams)[key] = value;
+  }
+  if (o.budget > 0) {
+    config.assessParams[config.learner == "lpi" ? "iterations" : "updates"] =
+        std::to_string(o.budget);
+  }
+  if (o.runs > 0) config.assessRuns = o.runs;
+  config.seed = o.seed;
+  run::validate(config);
+  return config;
+}
+
+int assess(const AssessOptions& o) {
+  const auto config = assessConfig(o);
+  const run::LearningTask task(config, run::LearningTask::Budget::Assessment);
+  const std::size_t dim = task.stateDim();
+  const auto raw = std::make_shared<const jit::RawFeatureMap>(dim);
+
+  // Every input is read and checked before anything is written.
+  std::vector<run::FeatureSet> sets;
+  if (o.raw || !o.features.empty()) sets.push_back({"original", raw});
+  for (const auto& path : o.features) {
+    const auto file = expr::readFeaturesFile(path, task.stateNames(), config.env);
+    std::string name = std::filesystem::path(path).stem().string();
+    for (const auto& s : sets) {
+      if (s.name == name) name += "-" + std::to_string(sets.size());
+    }
+    sets.push_back({name, run::genomeFeatureMap(file.genome, dim, false)});
+    if (o.withOriginal) {
+      sets.push_back({name + "+original", run::genomeFeatureMap(file.genome, dim, true)});
+    }
+  }
+  if (sets.empty())
+    throw InputError("nothing to assess: give --features FILE... or --raw", "gpfd assess");
+  const std::string out = o.out.empty() ? "results/assess-" + config.env : o.out;
+  std::error_code ec;
+  std::filesystem::create_directories(out, ec);
+  if (ec) throw InputError("cannot create the output directory: " + ec.message(), out);
+
+  if (!o.quiet) {
+    fmt::print("gpfd assess: {} feature sets x {} runs on {} ({}), seed {}\n", sets.size(),
+               config.assessRuns, config.env, config.learner, config.seed);
+    std::fflush(stdout);
+  }
+  const auto result = run::runAssessment(task, sets, config.assessRuns, config.seed, o.threads);
+  const auto summary = run::summarizeAssessment(result, 0);
+  run::writeAssessment(out, result, summary, config.env + ": " + config.learner,
+                       config.learner == "lpi" ? "iteration" : "policy update");
+  if (!o.quiet) {
+    for (const auto& row : summary) {
+      fmt::print("{:<24} final {:.6g} ± {:.3g}  Welch p {:.3g}  Mann-Whitney p {:.3g}  d {:.3g}\n",
+                 row.name, row.final.mean, row.final.halfWidth, row.vsBaseline.welchP,
+                 row.vsBaseline.mannWhitneyP, row.vsBaseline.cohenD);
+    }
+    fmt::print("results in {}\n", out);
+  }
+  return 0;
+}
+
+const CommandRegistration registration{
+    "assess", [](CLI::App& app) {
+      auto* cmd = app.add_subcommand(
+          "assess",
+          "Train feature sets with the long budget over N runs and test them against the "
+          "original state variables");
+      auto o = std::make_shared<AssessOptions>();
+      cmd->add_option("env", o->env, "Environment (see gpfd envs); optional with --config");
+      cmd->add_option("--config", o->config,
+                      "Experiment config (file or shipped name) for the learner");
+      cmd->add_option("--features", o->features, "Features files to assess")->expected(1, -1);
+      cmd->add_flag("--raw", o->raw, "Assess the original state variables (always the baseline)");
+      cmd->add_flag("--with-original", o->withOriginal,
+                    "Also assess each file's features + the original variables");
+      cmd->add_option("--runs", o->runs, "Independent runs per set (default: the config's, 20)")
+          ->check(CLI::PositiveNumber);
+      cmd->add_option("--budget", o->budget, "Policy updates (pg) or iterations (lpi) per run")
+          ->check(CLI::PositiveNumber);
+      cmd->add_option("--param", o->params, "k=v for the environment or the learner (repeatable)");
+      cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str();
+      cmd->add_option("--threads", o->threads, "Worker threads (0: all cores)")
+          ->check(CLI::NonNegativeNumber);
+      cmd->add_option("--out", o->out, "Output directory (default results/assess-ENV)");
+      cmd->add_flag("--quiet", o->quiet, "Print nothing");
+      return [o] { return assess(*o); };
+    }};
+
+}  // namespace
+}  // namespace gpfd::app

@@ -1,0 +1,53 @@
+// run: the paper's test protocol (`gpfd assess`): every feature set is trained with the long
+// budget over N independent runs; learning curves with 95% intervals, final performance, and
+// significance tests of each set against the original state variables.
+#pragma once
+
+#include <atomic>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gpfd/jit/feature_map.hpp"
+#include "gpfd/rl/learning_curve.hpp"
+#include "gpfd/run/learning_task.hpp"
+#include "gpfd/run/statistics.hpp"
+
+namespace gpfd::run {
+
+struct FeatureSet {
+  std::string name;
+  std::shared_ptr<const jit::FeatureMap> map;
+};
+
+struct AssessmentResult {
+  std::vector<std::string> names;
+  std::vector<std::vector<rl::LearningCurve>> curves;  // [set][run]
+
+  // The last row's mean return of every run of a set.
+  std::vector<double> finals(std::size_t set) const;
+};
+
+// Run r of set s is seeded deriveSeed(seed, s, r): independent runs, identical for any number of
+// threads. `progress` (optional) counts finished runs.
+AssessmentResult runAssessment(const LearningTask& task, const std::vector<FeatureSet>& sets,
+                               int runs, std::uint64_t seed, int threads,
+                               std::atomic<long>* progress = nullptr);
+
+// One row per set: its final performance and its comparison with set `baseline`.
+struct SetSummary {
+  std::string name;
+  Summary final;
+  Comparison vsBaseline;
+  int diverged = 0;
+};
+std::vector<SetSummary> summarizeAssessment(const AssessmentResult& result, std::size_t baseline);
+
+// Writes DIR/curves.csv (set,update,episodes,runs,mean,ci_low,ci_high), DIR/finals.csv
+// (set,run,final), DIR/summary.csv and DIR/summary.md (the statistics table), and the plot
+// DIR/curves.{png,svg} (with its .dat and .gp). `title` heads the plot.
+void writeAssessment(const std::string& dir, const AssessmentResult& result,
+                     const std::vector<SetSummary>& summary, const std::string& title,
+                     const std::string& xlabel);
+
+}  // namespace gpfd::run

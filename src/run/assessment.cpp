@@ -1,0 +1,111 @@
+#include "gpfd/run/assessment.hpp"
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <cmath>
+
+#include "gpfd/io/gnuplot.hpp"
+#include "gpfd/util/atomic_file.hpp"
+
+namespace gpfd::run {
+
+std::vector<double> AssessmentResult::finals(std::size_t set) const {
+  std::vector<double> out;
+  for (const auto& curve : curves[set]) {
+    out.push_back(curve.points.empty() ? -std::numeric_limits<double>::infinity()
+                                       : curve.points.back().meanReturn);
+  }
+  return out;
+}
+
+AssessmentResult runAssessment(const LearningTask& task, const std::vector<FeatureSet>& sets,
+                               int runs, std::uint64_t seed, int threads,
+                               std::atomic<long>* progress) {
+  AssessmentResult result;
+  for (const auto& s : sets) result.names.push_back(s.name);
+  result.curves.assign(sets.size(), std::vector<rl::LearningCurve>(runs));
+  const std::size_t jobs = sets.size() * static_cast<std::size_t>(runs);
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, jobs, [&](std::size_t job) {
+      const std::size_t s = job / runs, r = job % runs;
+      Rng rng(deriveSeed(seed, s, r));
+      result.curves[s][r] = task.train(*sets[s].map, rng);
+      if (progress) progress->fetch_add(1);
+    });
+  });
+  return result;
+}
+
+std::vector<SetSummary> summarizeAssessment(const AssessmentResult& result, std::size_t baseline) {
+  std::vector<SetSummary> out;
+  const auto base = result.finals(baseline);
+  for (std::size_t s = 0; s < result.names.size(); ++s) {
+    const auto finals = result.finals(s);
+    SetSummary row{result.names[s], summarize(finals), compare(finals, base), 0};
+    for (const auto& c : result.curves[s]) row.diverged += c.diverged ? 1 : 0;
+    out.push_back(row);
+  }
+  return out;
+}
+
+void writeAssessment(const std::string& dir, const AssessmentResult& result,
+                     const std::vector<SetSummary>& summary, const std::string& title,
+                     const std::string& xlabel) {
+  std::string curves = "set,update,episodes,runs,mean,ci_low,ci_high\n";
+  std::string finals = "set,run,final\n";
+  io::LinePlot plot{title, xlabel, "mean return", {}, false};
+  for (std::size_t s = 0; s < result.names.size(); ++s) {
+    const auto& runs = result.curves[s];
+    std::size_t rows = 0;
+    for (const auto& c : runs) rows = std::max(rows, c.points.size());
+    io::Series series{result.names[s], {}, {}, {}, {}};
+    for (std::size_t u = 0; u < rows; ++u) {
+      std::vector<double> values;
+      double episodes = 0;
+      for (const auto& c : runs) {
+        if (u < c.points.size()) {
+          values.push_back(c.points[u].meanReturn);
+          episodes += static_cast<double>(c.points[u].episodes);
+        }
+      }
+      const Summary m = summarize(values);
+      episodes /= static_cast<double>(values.size());
+      curves += fmt::format("{},{},{},{},{},{},{}\n", result.names[s], u, episodes, m.n, m.mean,
+                            m.mean - m.halfWidth, m.mean + m.halfWidth);
+      series.x.push_back(static_cast<double>(u));
+      series.y.push_back(m.mean);
+      series.low.push_back(m.mean - m.halfWidth);
+      series.high.push_back(m.mean + m.halfWidth);
+    }
+    plot.series.push_back(series);
+    const auto f = result.finals(s);
+    for (std::size_t r = 0; r < f.size(); ++r) {
+      finals += fmt::format("{},{},{}\n", result.names[s], r, f[r]);
+    }
+  }
+  std::string csv =
+      "set,runs,mean_final,std,ci95,diverged,welch_t,welch_p,mann_whitney_u,mann_whitney_p,"
+      "cohen_d,a12\n";
+  std::string md =
+      "| feature set | runs | final (mean ± 95% CI) | vs first: Welch p | Mann-Whitney p | "
+      "Cohen's d | A12 |\n|---|---|---|---|---|---|---|\n";
+  for (const auto& row : summary) {
+    const auto& c = row.vsBaseline;
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", row.name, row.final.n,
+                       row.final.mean, row.final.stddev, row.final.halfWidth, row.diverged,
+                       c.welchT, c.welchP, c.mannWhitneyU, c.mannWhitneyP, c.cohenD, c.a12);
+    md += fmt::format("| {} | {} | {:.4g} ± {:.3g} | {:.3g} | {:.3g} | {:.3g} | {:.3g} |\n",
+                      row.name, row.final.n, row.final.mean, row.final.halfWidth, c.welchP,
+                      c.mannWhitneyP, c.cohenD, c.a12);
+  }
+  writeFileAtomically(dir + "/curves.csv", curves);
+  writeFileAtomically(dir + "/finals.csv", finals);
+  writeFileAtomically(dir + "/summary.csv", csv);
+  writeFileAtomically(dir + "/summary.md", md);
+  io::plotLines(dir + "/curves", plot);
+}
+
+}  // namespace gpfd::run
