@@ -1,5 +1,6 @@
 #include "gpfd/jit/program.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <string>
@@ -133,7 +134,13 @@ class Builder {
   std::vector<std::uint32_t> table_;
 };
 
-void check(const expr::Genome& genome, std::size_t inputDim) {
+void fail(std::size_t feature, const std::string& what) {
+  throw LowerError("feature " + std::to_string(feature) + ": " + what);
+}
+
+// Genome-level limits, and feature boundaries inside the node array (so that feature views are
+// safe to form); each tree is checked node by node while it is lowered.
+void checkGenome(const expr::Genome& genome) {
   if (genome.featureCount() > kMaxLowerFeatures) {
     throw LowerError("genome has " + std::to_string(genome.featureCount()) +
                      " features, more than the limit of " + std::to_string(kMaxLowerFeatures));
@@ -142,24 +149,13 @@ void check(const expr::Genome& genome, std::size_t inputDim) {
     throw LowerError("genome has " + std::to_string(genome.size()) +
                      " nodes, more than the limit of " + std::to_string(kMaxLowerNodes));
   }
-  const int variables = inputDim > 65536 ? 65536 : static_cast<int>(inputDim);
-  std::size_t total = 0;
   for (std::size_t k = 0; k < genome.featureCount(); ++k) {
-    // Lengths are checked against the node array before any feature view is formed.
     const std::uint32_t start = genome.starts()[k];
-    if (start >= genome.size() || genome.nodes()[start].length > genome.size() - start) {
-      throw LowerError("feature " + std::to_string(k) + ": length out of the genome");
-    }
-    const expr::TreeView tree = genome.feature(k);
-    total += tree.size();
-    const std::string problem = expr::checkTree(tree, variables);
-    if (!problem.empty()) throw LowerError("feature " + std::to_string(k) + ": " + problem);
-    if (expr::depth(tree) > kMaxLowerDepth) {
-      throw LowerError("feature " + std::to_string(k) + " is deeper than the limit of " +
-                       std::to_string(kMaxLowerDepth) + " levels");
+    if (start >= genome.size() || genome.nodes()[start].length == 0 ||
+        genome.nodes()[start].length > genome.size() - start) {
+      fail(k, "length out of the genome");
     }
   }
-  if (total > kMaxLowerNodes) throw LowerError("features overlap or exceed the node limit");
 }
 
 }  // namespace
@@ -172,34 +168,66 @@ bool Program::hasCalls() const {
 }
 
 Program lower(const expr::Genome& genome, std::size_t inputDim) {
-  check(genome, inputDim);
+  checkGenome(genome);
   Builder builder(genome.size());
   std::vector<std::uint32_t> outputs;
   outputs.reserve(genome.featureCount());
-  std::vector<std::uint32_t> stack;
+  // Reverse prefix order: operands are on the stack, first operand on top, with the length and
+  // depth of their subtrees, which validates the tree in the same pass.
+  struct Entry {
+    std::uint32_t value;
+    std::uint32_t length;
+    int depth;
+  };
+  std::vector<Entry> stack;
   stack.reserve(64);
   for (std::size_t k = 0; k < genome.featureCount(); ++k) {
     const expr::TreeView tree = genome.feature(k);
-    // Reverse prefix order: operands are on the stack, first operand on top.
     stack.clear();
     for (std::size_t i = tree.size(); i-- > 0;) {
       const expr::Node& node = tree[i];
-      switch (expr::arity(node.op)) {
+      if (static_cast<int>(node.op) >= expr::kOpCount) fail(k, "unknown operator");
+      const int n = expr::arity(node.op);
+      if (stack.size() < static_cast<std::size_t>(n)) fail(k, "malformed prefix tree");
+      Entry e{0, 1, 0};
+      switch (n) {
         case 0:
-          stack.push_back(node.op == Op::Var ? builder.variable(node.var)
-                                             : builder.constant(node.value));
+          if (node.op == Op::Var) {
+            if (node.var >= inputDim) {
+              fail(k, "variable x" + std::to_string(node.var) + " out of range (the state has " +
+                          std::to_string(inputDim) + " variables)");
+            }
+            e.value = builder.variable(node.var);
+          } else {
+            if (!std::isfinite(node.value)) fail(k, "non-finite constant");
+            e.value = builder.constant(node.value);
+          }
           break;
         case 1:
-          stack.back() = builder.unary(node.op, stack.back());
+          e = stack.back();
+          stack.pop_back();
+          e.value = builder.unary(node.op, e.value);
+          e.length += 1;
           break;
         default: {
-          const std::uint32_t a = stack.back();
+          const Entry a = stack.back();
           stack.pop_back();
-          stack.back() = builder.binary(node.op, a, stack.back());
+          const Entry b = stack.back();
+          stack.pop_back();
+          e.value = builder.binary(node.op, a.value, b.value);
+          e.length = 1 + a.length + b.length;
+          e.depth = std::max(a.depth, b.depth);
         }
       }
+      e.depth += 1;
+      if (node.length != e.length) fail(k, "subtree lengths do not match the tree");
+      if (e.depth > kMaxLowerDepth) {
+        fail(k, "deeper than the limit of " + std::to_string(kMaxLowerDepth) + " levels");
+      }
+      stack.push_back(e);
     }
-    outputs.push_back(stack.back());
+    if (stack.size() != 1) fail(k, "malformed prefix tree");
+    outputs.push_back(stack.back().value);
   }
 
   // Keep what the outputs need, in the original order.

@@ -146,15 +146,20 @@ class Emitter {
       if (p_.code[i].op == Op::Const) pool_[i] = entries++;
     }
     poolLabel_ = a_.newLabel();
+    entryLabel_ = a_.newLabel();
     calls_ = p_.hasCalls();
-
+    // The constant pool comes first, so that every RIP-relative reference to it points backwards
+    // to a bound label (no fix-ups); the function starts after it.
+    emitPool(entries);
+    a_.bind(entryLabel_);
     if (batch_) {
       emitBatch();
     } else {
       emitScalar();
     }
-    emitPool(entries);
   }
+
+  asmjit::Label entryLabel() const { return entryLabel_; }
 
  private:
   struct Value {
@@ -237,7 +242,6 @@ class Emitter {
     for (std::size_t i = 0; i < p_.code.size(); ++i) {
       if (pool_[i] >= 0) put(pool_[i], std::bit_cast<std::uint64_t>(p_.code[i].value));
     }
-    a_.align(asmjit::AlignMode::kData, 32);
     a_.bind(poolLabel_);
     a_.embed(data.data(), data.size() * 8);
   }
@@ -615,7 +619,7 @@ class Emitter {
   const int width_;
   bool calls_ = false;
   x86::Gp state_, out_;
-  asmjit::Label poolLabel_;
+  asmjit::Label poolLabel_, entryLabel_;
   std::vector<std::uint32_t> lastUse_;
   std::vector<int> outputsAt_, nextOutput_, pool_;
   std::vector<Value> values_;
@@ -634,8 +638,9 @@ NativeCode compile(const Program& program, bool batch) {
     code.init(rt.jit->environment());
     code.setErrorHandler(&errors);
     x86::Assembler assembler(&code);
+    Emitter emitter(assembler, program, batch, frame);
     try {
-      Emitter(assembler, program, batch, frame).emit();
+      emitter.emit();
     } catch (const NeedFrame&) {
       frame = true;
       continue;
@@ -643,19 +648,20 @@ NativeCode compile(const Program& program, bool batch) {
     if (errors.error != asmjit::kErrorOk) {
       throw CompileError(std::string("asmjit: ") + errors.text);
     }
-    void* entry = nullptr;
-    const asmjit::Error err = rt.jit->add(&entry, &code);
+    void* base = nullptr;
+    const asmjit::Error err = rt.jit->add(&base, &code);
     if (err != asmjit::kErrorOk) {
       throw CompileError(std::string("asmjit: ") + asmjit::DebugUtils::errorAsString(err));
     }
-    return NativeCode(entry, code.codeSize());
+    void* entry = static_cast<char*>(base) + code.labelOffset(emitter.entryLabel());
+    return NativeCode(base, entry, code.codeSize());
   }
 }
 
 }  // namespace
 
 NativeCode::~NativeCode() {
-  if (entry_) runtime().jit->release(entry_);
+  if (base_) runtime().jit->release(base_);
 }
 
 bool jitAvailable() { return true; }

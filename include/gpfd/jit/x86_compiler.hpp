@@ -40,7 +40,9 @@ class CompileError : public std::runtime_error {
 class NativeCode {
  public:
   NativeCode() = default;
-  explicit NativeCode(void* entry, std::size_t bytes) : entry_(entry), bytes_(bytes) {}
+  // `base`: the allocation in the runtime; `entry`: the function inside it.
+  NativeCode(void* base, void* entry, std::size_t bytes)
+      : base_(base), entry_(entry), bytes_(bytes) {}
   NativeCode(NativeCode&& other) noexcept { swap(other); }
   NativeCode& operator=(NativeCode&& other) noexcept {
     NativeCode tmp(std::move(other));
@@ -57,9 +59,11 @@ class NativeCode {
 
  private:
   void swap(NativeCode& other) noexcept {
+    std::swap(base_, other.base_);
     std::swap(entry_, other.entry_);
     std::swap(bytes_, other.bytes_);
   }
+  void* base_ = nullptr;
   void* entry_ = nullptr;
   std::size_t bytes_ = 0;
 };
