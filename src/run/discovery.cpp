@@ -116,7 +116,23 @@ std::unique_ptr<Discovery> Discovery::resume(const DiscoveryOptions& options,
                                              std::optional<int> generations) {
   const std::string checkpointPath = options.outDir + "/checkpoint.json";
   if (!fs::exists(checkpointPath)) {
-    throw InputError("no checkpoint to resume from", checkpointPath);
+    // Killed before its first checkpoint: the run starts over with its stored config.
+    const std::string configPath = options.outDir + "/config.toml";
+    if (!fs::exists(configPath)) {
+      throw InputError("no run to resume (neither checkpoint.json nor config.toml)",
+                       options.outDir);
+    }
+    const std::string text = readFile(configPath);
+    if (expected && formatExperimentConfig(*expected) != text) {
+      throw InputError(
+          "the config differs from the one the run was started with (see " + configPath + ")",
+          options.outDir);
+    }
+    ExperimentConfig config = parseExperimentConfig(text, configPath);
+    if (generations) config.gp.generations = *generations;
+    auto state = std::make_unique<State>(config, options);
+    state->configText = text;
+    return std::unique_ptr<Discovery>(new Discovery(std::move(state)));
   }
   Checkpoint checkpoint = parseCheckpoint(readFile(checkpointPath), checkpointPath);
   if (checkpoint.version != options.version) {

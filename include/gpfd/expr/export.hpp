@@ -1,0 +1,21 @@
+// expr: discovered features as code a user can paste into their own agent: a C function, a NumPy
+// function, or LaTeX. The C and NumPy code reproduce the protected semantics of ops.hpp exactly
+// (saturation, protected division, sqrt and log), so they compute the same values as gpfd.
+#pragma once
+
+#include <string>
+
+#include "gpfd/expr/genome.hpp"
+#include "gpfd/expr/print.hpp"
+
+namespace gpfd::expr {
+
+// `void gpfd_features(const double* s, double* f)`, f[k] = feature k; self-contained C99.
+std::string exportC(const Genome& genome, const VariableNames& names);
+// `def features(s)`: s[..., i] is variable i (works on one state or a batch); returns a list of
+// arrays, one per feature. Needs NumPy.
+std::string exportPython(const Genome& genome, const VariableNames& names);
+// One `\phi_k(s) = ...` line per feature, in an align* environment.
+std::string exportLatex(const Genome& genome, const VariableNames& names);
+
+}  // namespace gpfd::expr

@@ -1,0 +1,203 @@
+#include "gpfd/expr/export.hpp"
+
+#include <fmt/format.h>
+
+#include <cctype>
+
+namespace gpfd::expr {
+namespace {
+
+// Helper names of the generated code, per operator (C and Python share them).
+std::string helper(Op op) { return "gpfd_" + std::string(info(op).name); }
+
+std::string variableComment(const Node& n, const VariableNames& names) {
+  return n.var < names.size() ? names[n.var] : "x" + std::to_string(n.var);
+}
+
+// Prints a tree as nested helper calls; `variable` prints a variable node.
+template <typename VariableText>
+std::string calls(TreeView t, std::size_t i, const VariableText& variable) {
+  const Node& n = t[i];
+  if (n.op == Op::Const) return formatNumber(n.value);
+  if (n.op == Op::Var) return variable(n);
+  std::string out = helper(n.op) + "(";
+  std::size_t child = i + 1;
+  for (int c = 0; c < arity(n.op); ++c) {
+    if (c > 0) out += ", ";
+    out += calls(t, child, variable);
+    child += t[child].length;
+  }
+  return out + ")";
+}
+
+std::string latexName(const std::string& name) {
+  std::size_t digits = name.size();
+  while (digits > 0 && std::isdigit(static_cast<unsigned char>(name[digits - 1]))) --digits;
+  std::string stem;
+  for (char c : name.substr(0, digits)) stem += c == '_' ? std::string("\\_") : std::string(1, c);
+  std::string out = "\\mathit{" + stem + "}";
+  if (digits < name.size()) out += "_{" + name.substr(digits) + "}";
+  return out;
+}
+
+std::string latex(TreeView t, std::size_t i, const VariableNames& names, int parentPrecedence,
+                  bool right) {
+  const Node& n = t[i];
+  if (n.op == Op::Const) return formatNumber(n.value);
+  if (n.op == Op::Var) {
+    return n.var < names.size() ? latexName(names[n.var]) : "x_{" + std::to_string(n.var) + "}";
+  }
+  const std::size_t a = i + 1;
+  const std::size_t b = arity(n.op) == 2 ? a + t[a].length : a;
+  const auto arg = [&](std::size_t c) { return latex(t, c, names, 0, false); };
+  switch (n.op) {
+    case Op::Add:
+    case Op::Sub:
+    case Op::Mul: {
+      const int p = info(n.op).precedence;
+      const char* symbol = n.op == Op::Add ? " + " : n.op == Op::Sub ? " - " : " \\cdot ";
+      std::string s = latex(t, a, names, p, false) + symbol + latex(t, b, names, p, true);
+      const bool parens = p < parentPrecedence || (p == parentPrecedence && right);
+      return parens ? "\\left(" + s + "\\right)" : s;
+    }
+    case Op::Div:
+      return "\\frac{" + arg(a) + "}{" + arg(b) + "}";
+    case Op::Min:
+      return "\\min\\left(" + arg(a) + ", " + arg(b) + "\\right)";
+    case Op::Max:
+      return "\\max\\left(" + arg(a) + ", " + arg(b) + "\\right)";
+    case Op::AbsDiff:
+      return "\\left|" + arg(a) + " - " + arg(b) + "\\right|";
+    case Op::Sqrt:
+      return "\\sqrt{\\left|" + arg(a) + "\\right|}";
+    case Op::Abs:
+      return "\\left|" + arg(a) + "\\right|";
+    case Op::Neg:
+      return "-\\left(" + arg(a) + "\\right)";
+    case Op::Square:
+      return "\\left(" + arg(a) + "\\right)^2";
+    case Op::Log:
+      return "\\log\\left|" + arg(a) + "\\right|";
+    default:
+      return "\\" + std::string(info(n.op).name) + "\\left(" + arg(a) + "\\right)";
+  }
+}
+
+constexpr const char* kCPreamble =
+    R"(/* Features discovered by gpfd. Protected semantics (gpfd docs/expressions.md): every value
+   is finite; overflow saturates to +-DBL_MAX; a / b = 1 when |b| <= 1e-10; sqrt and log take |a|;
+   log is 0 near 0; inputs: NaN -> 0, +-inf -> +-DBL_MAX. Compile without -ffast-math. */
+#include <float.h>
+#include <math.h>
+
+static double gpfd_min(double a, double b) { return a < b ? a : b; }
+static double gpfd_max(double a, double b) { return a > b ? a : b; }
+static double gpfd_sat(double x) { return gpfd_min(gpfd_max(x, -DBL_MAX), DBL_MAX); }
+static double gpfd_in(double x) { return x == x ? gpfd_sat(x) : 0.0; }
+static double gpfd_add(double a, double b) { return gpfd_sat(a + b); }
+static double gpfd_sub(double a, double b) { return gpfd_sat(a - b); }
+static double gpfd_mul(double a, double b) { return gpfd_sat(a * b); }
+static double gpfd_div(double a, double b) { return fabs(b) > 1e-10 ? gpfd_sat(a / b) : 1.0; }
+static double gpfd_absdiff(double a, double b) { return gpfd_sat(fabs(a - b)); }
+static double gpfd_sin(double a) { return sin(a); }
+static double gpfd_cos(double a) { return cos(a); }
+static double gpfd_tanh(double a) { return tanh(a); }
+static double gpfd_sqrt(double a) { return sqrt(fabs(a)); }
+static double gpfd_neg(double a) { return -a; }
+static double gpfd_abs(double a) { return fabs(a); }
+static double gpfd_exp(double a) { return gpfd_sat(exp(a)); }
+static double gpfd_log(double a) { return fabs(a) > 1e-10 ? log(fabs(a)) : 0.0; }
+static double gpfd_square(double a) { return gpfd_sat(a * a); }
+)";
+
+constexpr const char* kPythonPreamble =
+    R"("""Features discovered by gpfd, with gpfd's protected semantics (docs/expressions.md):
+every value is finite; overflow saturates to +-DBL_MAX; a / b = 1 when |b| <= 1e-10; sqrt and log
+take |a|; log is 0 near 0; inputs: NaN -> 0, +-inf -> +-DBL_MAX."""
+import numpy as np
+
+_MAX = np.finfo(np.float64).max
+
+
+def _sat(x):
+    return np.clip(x, -_MAX, _MAX)
+
+
+def _in(x):
+    x = np.asarray(x, dtype=np.float64)
+    return np.where(np.isnan(x), 0.0, _sat(x))
+
+
+def gpfd_add(a, b): return _sat(np.add(a, b))
+def gpfd_sub(a, b): return _sat(np.subtract(a, b))
+def gpfd_mul(a, b): return _sat(np.multiply(a, b))
+def gpfd_min(a, b): return np.where(np.less(a, b), a, b)
+def gpfd_max(a, b): return np.where(np.greater(a, b), a, b)
+def gpfd_absdiff(a, b): return _sat(np.abs(np.subtract(a, b)))
+def gpfd_sin(a): return np.sin(a)
+def gpfd_cos(a): return np.cos(a)
+def gpfd_tanh(a): return np.tanh(a)
+def gpfd_sqrt(a): return np.sqrt(np.abs(a))
+def gpfd_neg(a): return np.negative(a)
+def gpfd_abs(a): return np.abs(a)
+def gpfd_square(a): return _sat(np.multiply(a, a))
+
+
+def gpfd_div(a, b):
+    with np.errstate(all="ignore"):
+        return np.where(np.abs(b) > 1e-10, _sat(np.divide(a, b)), 1.0)
+
+
+def gpfd_exp(a):
+    with np.errstate(over="ignore"):
+        return _sat(np.exp(a))
+
+
+def gpfd_log(a):
+    with np.errstate(divide="ignore"):
+        return np.where(np.abs(a) > 1e-10, np.log(np.abs(a)), 0.0)
+
+)";
+
+}  // namespace
+
+std::string exportC(const Genome& genome, const VariableNames& names) {
+  std::string out = kCPreamble;
+  out +=
+      fmt::format("\n/* {} features of {} state variables:", genome.featureCount(), names.size());
+  for (std::size_t i = 0; i < names.size(); ++i) out += fmt::format(" s[{}] = {};", i, names[i]);
+  out += " */\nvoid gpfd_features(const double* s, double* f) {\n";
+  for (std::size_t k = 0; k < genome.featureCount(); ++k) {
+    out += fmt::format("  f[{}] = {};\n", k, calls(genome.feature(k), 0, [&](const Node& n) {
+                         return fmt::format("gpfd_in(s[{}] /* {} */)", n.var,
+                                            variableComment(n, names));
+                       }));
+  }
+  return out + "}\n";
+}
+
+std::string exportPython(const Genome& genome, const VariableNames& names) {
+  std::string out = kPythonPreamble;
+  out += "\ndef features(s):\n    \"\"\"s[..., i] is state variable i:";
+  for (std::size_t i = 0; i < names.size(); ++i) out += fmt::format(" {}={}", i, names[i]);
+  out += ".\"\"\"\n    s = np.asarray(s, dtype=np.float64)\n    return [\n";
+  for (std::size_t k = 0; k < genome.featureCount(); ++k) {
+    out += "        " +
+           calls(genome.feature(k), 0,
+                 [&](const Node& n) { return fmt::format("_in(s[..., {}])", n.var); }) +
+           ",\n";
+  }
+  return out + "    ]\n";
+}
+
+std::string exportLatex(const Genome& genome, const VariableNames& names) {
+  std::string out = "\\begin{align*}\n";
+  for (std::size_t k = 0; k < genome.featureCount(); ++k) {
+    out += fmt::format("  \\phi_{{{}}}(s) &= {}{}\n", k + 1,
+                       latex(genome.feature(k), 0, names, 0, false),
+                       k + 1 < genome.featureCount() ? " \\\\" : "");
+  }
+  return out + "\\end{align*}\n";
+}
+
+}  // namespace gpfd::expr

@@ -1,0 +1,58 @@
+// Running the gpfd binary from tests.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace gpfd::testing {
+
+struct CommandResult {
+  int status = -1;  // Exit code, or -1 when killed by a signal.
+  std::string output;
+};
+
+inline CommandResult runGpfd(const std::string& args) {
+  CommandResult r;
+  FILE* pipe = popen((std::string(GPFD_BINARY) + " " + args + " 2>&1").c_str(), "r");
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) r.output += buffer;
+  const int status = pclose(pipe);
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+inline std::string readText(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+inline std::string writeText(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+// A fresh, empty directory path under the test temp dir.
+inline std::string freshDir(const std::string& name) {
+  const std::string dir = ::testing::TempDir() + "/" + name;
+  std::filesystem::remove_all(dir);
+  return dir;
+}
+
+// generations.csv without the wall-time column (which legitimately differs between runs).
+inline std::string withoutSeconds(const std::string& csv) {
+  std::stringstream in(csv), out;
+  std::string line;
+  while (std::getline(in, line)) out << line.substr(0, line.rfind(',')) << "\n";
+  return out.str();
+}
+
+}  // namespace gpfd::testing

@@ -1,0 +1,142 @@
+// `gpfd evolve` end to end on a tiny cart-pole config: reproducibility across threads, exact
+// resume after SIGKILL and SIGINT, results directory contents.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <thread>
+
+#include "cli_helpers.hpp"
+
+namespace gpfd::testing {
+namespace {
+
+const char* kTinyConfig = R"(name = "tiny"
+seed = 3
+[env]
+name = "cartpole"
+params = { max_steps = 200 }
+[learner]
+name = "pg"
+params = { updates = 4, episodes = 5 }
+[fitness]
+trials = 2
+size_penalty = 0.001
+[genome]
+max_features = 4
+max_depth = 4
+max_size = 15
+[gp]
+population = 12
+generations = 6
+)";
+
+std::string tinyConfig() { return writeText("tiny.toml", kTinyConfig); }
+
+std::string fingerprint(const std::string& dir) {
+  return withoutSeconds(readText(dir + "/generations.csv")) + readText(dir + "/best.features");
+}
+
+TEST(Evolve, WritesTheResultsDirectory) {
+  const auto dir = freshDir("evolve-files");
+  const auto r = runGpfd("evolve " + tinyConfig() + " --quiet --out " + dir);
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* file :
+       {"config.toml", "run.json", "generations.csv", "best.features", "checkpoint.json",
+        "best/generation-0000.features", "best/generation-0005.features"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir + "/" + file)) << file;
+  }
+  const auto csv = readText(dir + "/generations.csv");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "generation,best,mean,median,mean_size,mean_features,evaluations,cache_hits,seconds");
+  EXPECT_NE(readText(dir + "/best.features").find("# env: cartpole"), std::string::npos);
+  // The resolved config reads back as a config.
+  const auto again = runGpfd("evolve " + dir + "/config.toml --quiet --out " + dir + "-again");
+  EXPECT_EQ(again.status, 0) << again.output;
+  EXPECT_EQ(fingerprint(dir), fingerprint(dir + "-again"));
+}
+
+TEST(Evolve, OneAndTwoThreadsGiveIdenticalResults) {
+  const auto one = freshDir("evolve-t1"), two = freshDir("evolve-t2");
+  ASSERT_EQ(runGpfd("evolve " + tinyConfig() + " --quiet --threads 1 --out " + one).status, 0);
+  ASSERT_EQ(runGpfd("evolve " + tinyConfig() + " --quiet --threads 2 --out " + two).status, 0);
+  EXPECT_EQ(fingerprint(one), fingerprint(two));
+  const auto other = freshDir("evolve-seed");
+  ASSERT_EQ(runGpfd("evolve " + tinyConfig() + " --quiet --seed 4 --out " + other).status, 0);
+  EXPECT_NE(fingerprint(one), fingerprint(other));
+}
+
+// Starts gpfd evolve in the background and sends `signal` after `delay`.
+int runAndSignal(const std::string& args, int signal, std::chrono::milliseconds delay) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    execl("/bin/sh", "sh", "-c",
+          (std::string(GPFD_BINARY) + " " + args + " >/dev/null 2>&1").c_str(),
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  std::this_thread::sleep_for(delay);
+  kill(pid, signal);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return status;
+}
+
+TEST(Evolve, ResumeAfterSigkillGivesTheUninterruptedResult) {
+  const auto reference = freshDir("evolve-reference");
+  ASSERT_EQ(runGpfd("evolve " + tinyConfig() + " --quiet --threads 2 --out " + reference).status,
+            0);
+  // Kill at several points (before, during and after the first checkpoints), then resume.
+  for (int delayMs : {5, 60, 150, 300}) {
+    const auto dir = freshDir("evolve-killed-" + std::to_string(delayMs));
+    const std::string args = "evolve " + tinyConfig() + " --quiet --out " + dir;
+    // exec through sh: kill the whole process group so that gpfd itself gets SIGKILL.
+    const pid_t pid = fork();
+    if (pid == 0) {
+      setpgid(0, 0);
+      execl(GPFD_BINARY, GPFD_BINARY, "evolve", tinyConfig().c_str(), "--quiet", "--out",
+            dir.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(delayMs));
+    kill(pid, SIGKILL);
+    waitpid(pid, nullptr, 0);
+    if (!std::filesystem::exists(dir)) {
+      // Killed before anything was written: a plain restart is the resume.
+      ASSERT_EQ(runGpfd(args).status, 0);
+    } else {
+      const auto resumed = runGpfd("evolve --quiet --resume " + dir);
+      ASSERT_EQ(resumed.status, 0) << resumed.output;
+    }
+    EXPECT_EQ(fingerprint(dir), fingerprint(reference)) << "killed after " << delayMs << " ms";
+  }
+}
+
+TEST(Evolve, SigintStopsAfterACheckpoint) {
+  const auto reference = freshDir("evolve-reference-int");
+  ASSERT_EQ(runGpfd("evolve " + tinyConfig() + " --quiet --out " + reference).status, 0);
+  const auto dir = freshDir("evolve-interrupted");
+  const int status = runAndSignal("evolve " + tinyConfig() + " --out " + dir, SIGINT,
+                                  std::chrono::milliseconds(200));
+  (void)status;
+  if (std::filesystem::exists(dir + "/checkpoint.json")) {
+    const auto resumed = runGpfd("evolve --quiet --resume " + dir);
+    ASSERT_EQ(resumed.status, 0) << resumed.output;
+    EXPECT_EQ(fingerprint(dir), fingerprint(reference));
+  }
+}
+
+TEST(Evolve, ExtendingAResumedRunMatchesALongerRun) {
+  const auto longer = freshDir("evolve-8");
+  ASSERT_EQ(runGpfd("evolve " + tinyConfig() + " --quiet --generations 8 --out " + longer).status,
+            0);
+  const auto dir = freshDir("evolve-6-then-8");
+  ASSERT_EQ(runGpfd("evolve " + tinyConfig() + " --quiet --out " + dir).status, 0);
+  ASSERT_EQ(runGpfd("evolve --quiet --resume " + dir + " --generations 8").status, 0);
+  EXPECT_EQ(withoutSeconds(readText(dir + "/generations.csv")),
+            withoutSeconds(readText(longer + "/generations.csv")));
+}
+
+}  // namespace
+}  // namespace gpfd::testing
