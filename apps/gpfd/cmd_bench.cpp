@@ -102,7 +102,8 @@ void plot(const fs::path& dir, const Table& table, const jit::Figure3Options& o)
       const double tree = ns(table, set, d, "tree");
       for (const char* m : {"interp", "jit", "aot", "batch"}) {
         const double x = tree / ns(table, set, d, m);
-        data += " " + (std::isnan(x) ? std::string("NaN") : number(x));
+        data.push_back(' ');
+        data.append(std::isnan(x) ? std::string("NaN") : number(x));
       }
     }
     data += "\n";
@@ -140,7 +141,8 @@ void plot(const fs::path& dir, const Table& table, const jit::Figure3Options& o)
 
 std::string summary(const Table& t, const jit::Figure3Options& o, const jit::MemoryCheck& mem) {
   std::ostringstream s;
-  s << "gpfd bench jit: seed " << o.seed << ", " << o.calls << " calls, " << o.runs << " runs\n";
+  s << "gpfd bench jit: seed " << o.seed << ", " << o.calls << " calls, " << o.runs
+    << " runs (thread CPU time)\n";
   for (BenchSet set : {BenchSet::Arithmetic, BenchSet::Unary}) {
     s << "\n"
       << jit::benchSetName(set) << " set\n"
@@ -164,6 +166,10 @@ std::string summary(const Table& t, const jit::Figure3Options& o, const jit::Mem
   s << "\ncompile time, 63 nodes (depth 6): " << number(compileAt(6))
     << " us; 255 nodes (depth 8): " << number(compileAt(8)) << " us; ratio "
     << number(compileAt(8) / compileAt(6)) << "\n";
+  s << "code pages: "
+    << (jit::jitUsesDualMapping() ? "dual-mapped (read-execute view, separate read-write view)"
+                                  : "read-write-execute (no dual mapping on this system)")
+    << "; AVX2 batch kernel: " << (jit::hostHasAvx2() ? "yes" : "no") << "\n";
   if (mem.cycles > 0) {
     s << "resident memory over " << mem.cycles << " compile/release cycles: " << mem.rssBeforeKiB
       << " KiB -> " << mem.rssAfterKiB << " KiB (" << (mem.rssAfterKiB - mem.rssBeforeKiB)
