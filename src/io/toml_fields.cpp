@@ -27,8 +27,10 @@ std::vector<std::string> split(const std::string& dotted) {
   return parts;
 }
 
+// file:line:column of a node; "--set" for a node that came from a command-line override.
 std::string place(const std::string& source, const toml::node* node) {
-  if (node == nullptr || !node->source().begin) return source;
+  if (node == nullptr) return source;
+  if (!node->source().begin) return "--set";
   return fmt::format("{}:{}:{}", source, node->source().begin.line, node->source().begin.column);
 }
 

@@ -1,6 +1,10 @@
 #include "gpfd/run/experiment_config.hpp"
 
+#include <algorithm>
+#include <functional>
+
 #include "gpfd/env/environment.hpp"
+#include "gpfd/io/suggest.hpp"
 #include "gpfd/io/toml_fields.hpp"
 #include "gpfd/rl/learner_params.hpp"
 #include "gpfd/util/atomic_file.hpp"
@@ -98,6 +102,84 @@ void require(bool ok, const std::string& what, const std::string& where) {
 
 }  // namespace
 
+namespace {
+
+// Where a config key is: file:line:column plus the key when read from TOML, else the key.
+using Place = std::function<std::string(const std::string& section, const std::string& key)>;
+
+std::string plainPlace(const std::string& section, const std::string& key) {
+  return section.empty() ? key : section + "." + key;
+}
+
+bool applyLearnerParam(const std::string& learner, const std::string& key,
+                       const std::string& value) {
+  rl::PolicyGradientConfig pg;
+  rl::LambdaPolicyIterationConfig lpi;
+  return learner == "pg" ? rl::applyPolicyGradientParam(pg, key, value)
+                         : rl::applyLambdaPolicyIterationParam(lpi, key, value);
+}
+
+std::vector<std::string> learnerParamNames(const std::string& learner) {
+  std::vector<std::string> names;
+  for (const auto& spec :
+       learner == "pg" ? rl::policyGradientParamSpecs() : rl::lambdaPolicyIterationParamSpecs()) {
+    names.push_back(spec.name);
+  }
+  return names;
+}
+
+void checkLearnerParams(const ExperimentConfig& c, const std::string& section,
+                        const std::map<std::string, std::string>& params, const Place& place) {
+  for (const auto& [key, value] : params) {
+    try {
+      require(applyLearnerParam(c.learner, key, value),
+              "unknown parameter '" + key + "' of learner " + c.learner +
+                  io::didYouMean(key, learnerParamNames(c.learner)),
+              place(section, key));
+    } catch (const InputError& e) {
+      throw InputError(e.what(), place(section, key));
+    }
+  }
+}
+
+void validateAt(const ExperimentConfig& c, const Place& place) {
+  const auto& registry = env::Registry::global();
+  const auto envs = registry.names();
+  require(std::find(envs.begin(), envs.end(), c.env) != envs.end(),
+          "unknown environment '" + c.env + "'" + io::didYouMean(c.env, envs),
+          place("env", "name"));
+  std::vector<std::string> envParamNames;
+  for (const auto& spec : registry.info(c.env).params) envParamNames.push_back(spec.name);
+  for (const auto& [key, value] : c.envParams) {
+    require(std::find(envParamNames.begin(), envParamNames.end(), key) != envParamNames.end(),
+            "unknown parameter '" + key + "' of environment " + c.env +
+                io::didYouMean(key, envParamNames),
+            place("env.params", key));
+    try {
+      registry.make(c.env, {{key, value}});
+    } catch (const InputError& e) {
+      throw InputError(e.what(), place("env.params", key));
+    }
+  }
+  registry.make(c.env, c.envParams);  // Parameters that are only wrong together.
+  checkLearnerParams(c, "learner.params", c.learnerParams, place);
+  checkLearnerParams(c, "assess.params", c.assessParams, place);
+  try {
+    expr::PrimitiveSet::named(c.primitives);
+  } catch (const InputError& e) {
+    throw InputError(e.what(), place("primitives", "set"));
+  }
+  require(c.limits.minFeatures <= c.limits.maxFeatures,
+          "genome.min_features must not exceed genome.max_features",
+          place("genome", "min_features"));
+  require(c.initMinDepth <= c.initMaxDepth,
+          "genome.init_min_depth must not exceed genome.init_max_depth",
+          place("genome", "init_min_depth"));
+  gp::validate(c.gp);
+}
+
+}  // namespace
+
 ExperimentConfig parseExperimentConfig(const std::string& text, const std::string& source,
                                        const std::vector<std::string>& overrides) {
   toml::table root = io::parseToml(text, source);
@@ -107,7 +189,9 @@ ExperimentConfig parseExperimentConfig(const std::string& text, const std::strin
   Reader visitor{reader};
   visit(visitor, config);
   reader.finish();
-  validate(config);
+  validateAt(config, [&reader](const std::string& section, const std::string& key) {
+    return reader.where(section, key);
+  });
   return config;
 }
 
@@ -123,31 +207,7 @@ std::string formatExperimentConfig(const ExperimentConfig& config) {
   return writer.w.text();
 }
 
-void validate(const ExperimentConfig& c) {
-  env::Registry::global().make(c.env, c.envParams);  // Unknown env or parameter, bad value.
-  for (const auto& [key, value] : c.learnerParams) {
-    rl::PolicyGradientConfig pg;
-    rl::LambdaPolicyIterationConfig lpi;
-    const bool known = c.learner == "pg" ? rl::applyPolicyGradientParam(pg, key, value)
-                                         : rl::applyLambdaPolicyIterationParam(lpi, key, value);
-    require(known, "unknown parameter '" + key + "' of learner " + c.learner,
-            "learner.params." + key);
-  }
-  for (const auto& [key, value] : c.assessParams) {
-    rl::PolicyGradientConfig pg;
-    rl::LambdaPolicyIterationConfig lpi;
-    const bool known = c.learner == "pg" ? rl::applyPolicyGradientParam(pg, key, value)
-                                         : rl::applyLambdaPolicyIterationParam(lpi, key, value);
-    require(known, "unknown parameter '" + key + "' of learner " + c.learner,
-            "assess.params." + key);
-  }
-  expr::PrimitiveSet::named(c.primitives);
-  require(c.limits.minFeatures <= c.limits.maxFeatures,
-          "genome.min_features must not exceed genome.max_features", "genome");
-  require(c.initMinDepth <= c.initMaxDepth,
-          "genome.init_min_depth must not exceed genome.init_max_depth", "genome");
-  gp::validate(c.gp);
-}
+void validate(const ExperimentConfig& c) { validateAt(c, plainPlace); }
 
 gp::SearchSpace searchSpace(const ExperimentConfig& c, int variableCount) {
   gp::SearchSpace space;

@@ -52,9 +52,10 @@ TEST(Evolve, WritesTheResultsDirectory) {
             "generation,best,mean,median,mean_size,mean_features,evaluations,cache_hits,seconds");
   EXPECT_NE(readText(dir + "/best.features").find("# env: cartpole"), std::string::npos);
   // The resolved config reads back as a config.
-  const auto again = runGpfd("evolve " + dir + "/config.toml --quiet --out " + dir + "-again");
+  const auto againDir = freshDir("evolve-files-again");
+  const auto again = runGpfd("evolve " + dir + "/config.toml --quiet --out " + againDir);
   EXPECT_EQ(again.status, 0) << again.output;
-  EXPECT_EQ(fingerprint(dir), fingerprint(dir + "-again"));
+  EXPECT_EQ(fingerprint(dir), fingerprint(againDir));
 }
 
 TEST(Evolve, OneAndTwoThreadsGiveIdenticalResults) {
@@ -102,8 +103,8 @@ TEST(Evolve, ResumeAfterSigkillGivesTheUninterruptedResult) {
     std::this_thread::sleep_for(std::chrono::milliseconds(delayMs));
     kill(pid, SIGKILL);
     waitpid(pid, nullptr, 0);
-    if (!std::filesystem::exists(dir)) {
-      // Killed before anything was written: a plain restart is the resume.
+    if (!std::filesystem::exists(dir + "/config.toml")) {
+      // Killed before its config was stored: nothing ran yet, a plain restart is the resume.
       ASSERT_EQ(runGpfd(args).status, 0);
     } else {
       const auto resumed = runGpfd("evolve --quiet --resume " + dir);
