@@ -86,7 +86,9 @@ std::string latex(TreeView t, std::size_t i, const VariableNames& names, int par
 constexpr const char* kCPreamble =
     R"(/* Features discovered by gpfd. Protected semantics (gpfd docs/expressions.md): every value
    is finite; overflow saturates to +-DBL_MAX; a / b = 1 when |b| <= 1e-10; sqrt and log take |a|;
-   log is 0 near 0; inputs: NaN -> 0, +-inf -> +-DBL_MAX. Compile without -ffast-math. */
+   log is 0 near 0; inputs: NaN -> 0, +-inf -> +-DBL_MAX. Compile with -fno-builtin (so that the
+   compiler does not fold sin/cos/... of constants with its own, differently rounded, library) and
+   without -ffast-math, and the values are bit-identical to gpfd's. */
 #include <float.h>
 #include <math.h>
 
@@ -113,7 +115,8 @@ static double gpfd_square(double a) { return gpfd_sat(a * a); }
 constexpr const char* kPythonPreamble =
     R"("""Features discovered by gpfd, with gpfd's protected semantics (docs/expressions.md):
 every value is finite; overflow saturates to +-DBL_MAX; a / b = 1 when |b| <= 1e-10; sqrt and log
-take |a|; log is 0 near 0; inputs: NaN -> 0, +-inf -> +-DBL_MAX."""
+take |a|; log is 0 near 0; inputs: NaN -> 0, +-inf -> +-DBL_MAX. Arithmetic is bit-identical to
+gpfd's; sin, cos, tanh, exp and log are NumPy's and may differ from C's libm in the last bit."""
 import numpy as np
 
 _MAX = np.finfo(np.float64).max
@@ -180,14 +183,16 @@ std::string exportPython(const Genome& genome, const VariableNames& names) {
   std::string out = kPythonPreamble;
   out += "\ndef features(s):\n    \"\"\"s[..., i] is state variable i:";
   for (std::size_t i = 0; i < names.size(); ++i) out += fmt::format(" {}={}", i, names[i]);
-  out += ".\"\"\"\n    s = np.asarray(s, dtype=np.float64)\n    return [\n";
+  out += ".\"\"\"\n    s = np.asarray(s, dtype=np.float64)\n";
+  out += "    with np.errstate(all=\"ignore\"):  # Overflow saturates by design.\n";
+  out += "        return [\n";
   for (std::size_t k = 0; k < genome.featureCount(); ++k) {
-    out += "        " +
+    out += "            " +
            calls(genome.feature(k), 0,
                  [&](const Node& n) { return fmt::format("_in(s[..., {}])", n.var); }) +
            ",\n";
   }
-  return out + "    ]\n";
+  return out + "        ]\n";
 }
 
 std::string exportLatex(const Genome& genome, const VariableNames& names) {
