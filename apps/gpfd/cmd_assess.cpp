@@ -7,7 +7,9 @@
 #include "config_loading.hpp"
 #include "gpfd/env/environment.hpp"
 #include "gpfd/expr/features_file.hpp"
+#include "gpfd/rl/fourier_basis.hpp"
 #include "gpfd/run/assessment.hpp"
+#include "gpfd/run/state_ranges.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::app {
@@ -19,6 +21,7 @@ struct AssessOptions {
   std::vector<std::string> features;
   bool raw = false;
   bool withOriginal = false;
+  int fourier = 0;  // Order of a Fourier basis set to add; 0: none.
   int runs = 0;
   int budget = 0;
   std::vector<std::string> params;
@@ -79,6 +82,13 @@ int assess(const AssessOptions& o) {
       sets.push_back({name + "+original", run::genomeFeatureMap(file.genome, dim, true)});
     }
   }
+  if (o.fourier > 0) {
+    auto basis = rl::FourierBasis::automatic(run::typicalStateRanges(config.env, task.stateNames()),
+                                             o.fourier);
+    const bool full = basis.coupling() == rl::FourierBasis::Coupling::Full;
+    sets.push_back({fmt::format("fourier-{}{}", o.fourier, full ? "" : "-independent"),
+                    std::make_shared<const rl::FourierBasis>(std::move(basis))});
+  }
   if (sets.empty())
     throw InputError("nothing to assess: give --features FILE... or --raw", "gpfd assess");
   const std::string out = o.out.empty() ? "results/assess-" + config.env : o.out;
@@ -120,6 +130,11 @@ const CommandRegistration registration{
       cmd->add_flag("--raw", o->raw, "Assess the original state variables (always the baseline)");
       cmd->add_flag("--with-original", o->withOriginal,
                     "Also assess each file's features + the original variables");
+      cmd->add_option(
+             "--fourier", o->fourier,
+             "Also assess the Fourier basis of this order (Konidaris et al. 2011; 3 in the "
+             "report); full coupling up to 1024 terms, else independent")
+          ->check(CLI::Range(1, 9));
       cmd->add_option("--runs", o->runs, "Independent runs per set (default: the config's, 20)")
           ->check(CLI::PositiveNumber);
       cmd->add_option("--budget", o->budget, "Policy updates (pg) or iterations (lpi) per run")
