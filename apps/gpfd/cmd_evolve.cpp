@@ -13,6 +13,11 @@
 #include "gpfd/util/error.hpp"
 #include "gpfd/version.hpp"
 
+#ifdef GPFD_HAVE_MPI
+#include "gpfd/mpi/mpi_evaluator.hpp"
+#include "gpfd/mpi/worker.hpp"
+#endif
+
 namespace gpfd::app {
 namespace {
 
@@ -55,8 +60,25 @@ std::vector<std::string> overrides(const EvolveOptions& o) {
 }
 
 int evolve(const EvolveOptions& o) {
-  run::DiscoveryOptions options{o.resume.empty() ? o.out : o.resume, o.threads, kVersion,
-                                kRevision};
+  run::DiscoveryOptions options;
+  options.outDir = o.resume.empty() ? o.out : o.resume;
+  options.threads = o.threads;
+  options.version = kVersion;
+  options.revision = kRevision;
+#ifdef GPFD_HAVE_MPI
+  // Under mpiexec with several processes: rank 0 runs everything below with an MpiEvaluator,
+  // the other ranks only evaluate (docs/mpi.md).
+  std::optional<mpi::WorkerRelease> release;
+  if (auto* session = mpi::Session::current(); session && session->size() > 1) {
+    if (!session->isMaster()) return mpi::serveAsWorker(*session, o.threads, kVersion);
+    release.emplace(*session);
+    options.processes = session->size();
+    options.makeEvaluator = [session](const run::EvaluatorSetup& setup) {
+      return std::make_unique<mpi::MpiEvaluator>(*session, setup.configText, kVersion,
+                                                 setup.onEvaluated);
+    };
+  }
+#endif
   std::unique_ptr<run::Discovery> discovery;
   if (!o.resume.empty()) {
     if (!o.env.empty() || o.seed || o.population || !o.sets.empty()) {
@@ -102,20 +124,37 @@ int evolve(const EvolveOptions& o) {
     });
   }
   double total = 0.0;
-  discovery->run(
-      [&](const run::GenerationRecord& r) {
-        total += r.seconds;
-        if (o.quiet) return;
-        const int remaining = config.gp.generations - 1 - r.generation;
-        const double perGeneration = total / static_cast<double>(r.generation + 1);
-        fmt::print(
-            "{}gen {:3d}  best {:.6g}  mean {:.6g}  features {:.2f}  size {:.1f}  "
-            "evals {} (+{} cached)  {}  ETA {}\n",
-            terminal ? "\r\033[K" : "", r.generation, r.best, r.mean, r.meanFeatures, r.meanSize,
-            r.evaluations, r.cacheHits, duration(r.seconds), duration(perGeneration * remaining));
-        std::fflush(stdout);
-      },
-      interrupted);
+  // An error during the run (a worker's, a full disk) leaves the last generation's checkpoint.
+  const auto stoppedByError = [&] {
+    running.store(false);
+    if (status.joinable()) status.join();
+    if (terminal && !o.quiet) fmt::print("\r\033[K");
+    if (discovery->history().empty()) return;
+    fmt::print(stderr,
+               "gpfd evolve stopped in generation {}; the checkpoint of generation {} is "
+               "written. Continue with: gpfd evolve --resume {}\n",
+               discovery->history().back().generation + 1, discovery->history().back().generation,
+               options.outDir);
+  };
+  try {
+    discovery->run(
+        [&](const run::GenerationRecord& r) {
+          total += r.seconds;
+          if (o.quiet) return;
+          const int remaining = config.gp.generations - 1 - r.generation;
+          const double perGeneration = total / static_cast<double>(r.generation + 1);
+          fmt::print(
+              "{}gen {:3d}  best {:.6g}  mean {:.6g}  features {:.2f}  size {:.1f}  "
+              "evals {} (+{} cached)  {}  ETA {}\n",
+              terminal ? "\r\033[K" : "", r.generation, r.best, r.mean, r.meanFeatures, r.meanSize,
+              r.evaluations, r.cacheHits, duration(r.seconds), duration(perGeneration * remaining));
+          std::fflush(stdout);
+        },
+        interrupted);
+  } catch (...) {
+    stoppedByError();
+    throw;
+  }
   running.store(false);
   if (status.joinable()) status.join();
   if (terminal && !o.quiet) fmt::print("\r\033[K");

@@ -9,6 +9,12 @@
 #include "gpfd/util/error.hpp"
 #include "gpfd/version.hpp"
 
+#ifdef GPFD_HAVE_MPI
+#include <optional>
+
+#include "gpfd/mpi/session.hpp"
+#endif
+
 namespace gpfd::app {
 std::vector<Command>& commands() {
   static std::vector<Command> all;
@@ -18,6 +24,19 @@ std::vector<Command>& commands() {
 
 int main(int argc, char** argv) {
   using namespace gpfd;
+#ifdef GPFD_HAVE_MPI
+  // Started by mpiexec: MPI lives for the whole process (`gpfd evolve` then runs rank 0 as the
+  // master, the others as workers). Otherwise gpfd never touches MPI.
+  std::optional<mpi::Session> session;
+  if (mpi::Session::launchedByProcessManager()) {
+    try {
+      session.emplace(argc, argv);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "error: %s\n", e.what());
+      return 1;
+    }
+  }
+#endif
   CLI::App cli{"gpfd: feature discovery for reinforcement learning with genetic programming"};
   cli.set_version_flag("--version", std::string("gpfd ") + kVersion + " (" + kRevision + ")");
   cli.require_subcommand(1);
@@ -39,6 +58,14 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : 2;
   }
   try {
+#ifdef GPFD_HAVE_MPI
+    if (session && session->size() > 1 && !cli.got_subcommand("evolve")) {
+      // Every rank runs the same command line; only evolve divides the work.
+      if (!session->isMaster()) return 2;
+      throw InputError("only `gpfd evolve` runs on several MPI processes",
+                       "mpiexec -n " + std::to_string(session->size()));
+    }
+#endif
     for (const auto& [sub, run] : runners) {
       if (sub->parsed()) return run();
     }

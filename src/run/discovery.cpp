@@ -21,7 +21,8 @@ struct Discovery::State {
   std::string configText;
   LearningTask task;
   std::atomic<long> done{0};
-  ThreadEvaluator threads;
+  int threads = 0;  // As recorded in run.json: the resolved count, or the option given to MPI.
+  std::unique_ptr<gp::Evaluator> evaluator;
   gp::CachingEvaluator cache;
   gp::Evolution evolution;
   std::vector<GenerationRecord> history;
@@ -31,15 +32,26 @@ struct Discovery::State {
         options(o),
         configText(formatExperimentConfig(c)),
         task(c, LearningTask::Budget::Trial),
-        threads(
-            [this](const expr::Genome& g, Rng& rng) {
-              const double f = trialFitness(task, g, rng);
-              done.fetch_add(1, std::memory_order_relaxed);
-              return f;
-            },
-            o.threads),
-        cache(threads),
+        evaluator(makeEvaluator()),
+        cache(*evaluator),
         evolution(gpConfig(c), searchSpace(c, static_cast<int>(task.stateDim())), cache) {}
+
+  std::unique_ptr<gp::Evaluator> makeEvaluator() {
+    if (options.makeEvaluator) {
+      threads = options.threads;
+      return options.makeEvaluator({config, formatExperimentConfig(config),
+                                    [this] { done.fetch_add(1, std::memory_order_relaxed); }});
+    }
+    auto local = std::make_unique<ThreadEvaluator>(
+        [this](const expr::Genome& g, Rng& rng) {
+          const double f = trialFitness(task, g, rng);
+          done.fetch_add(1, std::memory_order_relaxed);
+          return f;
+        },
+        options.threads);
+    threads = local->threads();
+    return local;
+  }
 
   std::string path(const std::string& name) const { return options.outDir + "/" + name; }
 
@@ -97,11 +109,13 @@ std::unique_ptr<Discovery> Discovery::start(const ExperimentConfig& config,
     if (ec)
       throw InputError("cannot create the results directory: " + ec.message(), options.outDir);
     writeFileAtomically(state->path("config.toml"), state->configText);
+    const std::string processes =
+        options.processes > 1 ? fmt::format(",\n \"mpi_processes\": {}", options.processes) : "";
     writeFileAtomically(
         state->path("run.json"),
         fmt::format("{{\n \"seed\": {},\n \"version\": \"{}\",\n \"revision\": "
-                    "\"{}\",\n \"threads\": {}\n}}\n",
-                    config.seed, options.version, options.revision, state->threads.threads()));
+                    "\"{}\",\n \"threads\": {}{}\n}}\n",
+                    config.seed, options.version, options.revision, state->threads, processes));
   } catch (...) {
     // Leave nothing half-made behind.
     std::error_code ignored;

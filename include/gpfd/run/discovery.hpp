@@ -3,7 +3,7 @@
 //
 // Results directory:
 //   config.toml              the fully resolved config
-//   run.json                 seed, version, threads
+//   run.json                 seed, version, threads (and MPI processes, when above 1)
 //   generations.csv          one row per generation
 //   best/generation-NNNN.features   the best genome of each generation
 //   best.features            the best features so far (the final ones at the end)
@@ -17,16 +17,29 @@
 #include <optional>
 #include <string>
 
+#include "gpfd/gp/evaluator.hpp"
 #include "gpfd/run/checkpoint.hpp"
 #include "gpfd/run/experiment_config.hpp"
 
 namespace gpfd::run {
+
+// What a run gives the factory of its evaluator.
+struct EvaluatorSetup {
+  const ExperimentConfig& config;     // The run's config (generations possibly extended).
+  std::string configText;             // formatExperimentConfig(config): rebuilds the LearningTask.
+  std::function<void()> onEvaluated;  // Call once per finished fitness (progress display).
+};
+using EvaluatorFactory = std::function<std::unique_ptr<gp::Evaluator>(const EvaluatorSetup&)>;
 
 struct DiscoveryOptions {
   std::string outDir;
   int threads = 0;       // 0: all cores. Never changes results.
   std::string version;   // gpfd's version, recorded and checked on resume.
   std::string revision;  // Recorded only.
+  // Makes the evaluator of trialFitness (e.g. MPI's); empty: a ThreadEvaluator with `threads`.
+  // Whatever it makes must give ThreadEvaluator's results.
+  EvaluatorFactory makeEvaluator;
+  int processes = 1;  // MPI processes of the run; recorded in run.json when above 1.
 };
 
 class Discovery {

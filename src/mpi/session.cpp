@@ -1,0 +1,61 @@
+#include "gpfd/mpi/session.hpp"
+
+#include <mpi.h>
+
+#include <cstdlib>
+#include <stdexcept>
+
+namespace gpfd::mpi {
+namespace {
+
+Session* live = nullptr;
+
+}  // namespace
+
+bool Session::launchedByProcessManager() {
+  for (const char* name : {"PMI_RANK", "PMI_SIZE", "PMIX_RANK", "OMPI_COMM_WORLD_SIZE"}) {
+    if (std::getenv(name) != nullptr) return true;
+  }
+  return false;
+}
+
+Session::Session(int& argc, char**& argv) {
+  if (live != nullptr) throw std::logic_error("only one MPI session per process");
+  int provided = 0;
+  if (MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS) {
+    throw std::runtime_error("MPI_Init_thread failed");
+  }
+  if (provided < MPI_THREAD_FUNNELED) {
+    MPI_Finalize();
+    throw std::runtime_error("the MPI library does not support MPI_THREAD_FUNNELED");
+  }
+  // Errors come back as codes (checked by the callers), so that they become exceptions.
+  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  workersOnNode_ = rank_ == 0 ? 0 : 1;
+  MPI_Comm node = MPI_COMM_NULL;
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  if (node != MPI_COMM_NULL) {
+    MPI_Comm_size(node, &ranksOnNode_);
+    int masterHere = rank_ == 0 ? 1 : 0;
+    int masters = 0;
+    MPI_Allreduce(&masterHere, &masters, 1, MPI_INT, MPI_SUM, node);
+    workersOnNode_ = ranksOnNode_ - masters;
+    MPI_Comm_free(&node);
+  }
+  char name[MPI_MAX_PROCESSOR_NAME] = {};
+  int length = 0;
+  MPI_Get_processor_name(name, &length);
+  host_.assign(name, static_cast<std::size_t>(length));
+  live = this;
+}
+
+Session::~Session() {
+  live = nullptr;
+  MPI_Finalize();
+}
+
+Session* Session::current() { return live; }
+
+}  // namespace gpfd::mpi

@@ -1,0 +1,165 @@
+#include "gpfd/mpi/worker.hpp"
+
+#include <fmt/format.h>
+#include <tbb/info.h>
+
+#include <algorithm>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+
+#include "evaluation_pool.hpp"
+#include "gpfd/run/learning_task.hpp"
+#include "gpfd/util/error.hpp"
+#include "protocol.hpp"
+
+namespace gpfd::mpi {
+namespace {
+
+std::optional<std::uint64_t> injectedFailure() {
+  const char* text = std::getenv("GPFD_MPI_INJECT_FAILURE");
+  if (text == nullptr || *text == '\0') return std::nullopt;
+  char* end = nullptr;
+  const auto task = std::strtoull(text, &end, 10);
+  if (*end != '\0')
+    throw InputError("not a task number", "GPFD_MPI_INJECT_FAILURE=" + std::string(text));
+  return task;
+}
+
+EvaluationPool::Reply failureReply(std::uint64_t task, const std::string& host) {
+  bool input = false;
+  std::string what, where;
+  try {
+    throw;
+  } catch (const InputError& e) {
+    input = true;
+    what = e.what();
+    where = e.where();
+  } catch (const std::exception& e) {
+    what = e.what();
+  } catch (...) {
+    what = "unknown exception";
+  }
+  return {protocol::Failure, protocol::Writer()
+                                 .put(task)
+                                 .put(static_cast<std::uint8_t>(input))
+                                 .putString(what)
+                                 .putString(where)
+                                 .putString(host)
+                                 .take()};
+}
+
+void sendToMaster(const EvaluationPool::Reply& reply) {
+  protocol::check(MPI_Send(reply.bytes.data(), static_cast<int>(reply.bytes.size()), MPI_BYTE,
+                           protocol::kMaster, reply.tag, MPI_COMM_WORLD),
+                  "MPI_Send");
+}
+
+// The learning task of the master's config, checked against this worker's build.
+std::shared_ptr<const run::LearningTask> configure(const std::vector<char>& message,
+                                                   const std::string& version) {
+  protocol::Reader r(message);
+  const std::string masterVersion = r.getString();
+  const std::string text = r.getString();
+  if (masterVersion != version) {
+    throw InputError("this worker runs gpfd " + version + ", the master gpfd " + masterVersion);
+  }
+  const auto config = run::parseExperimentConfig(text, "the master's config");
+  if (run::formatExperimentConfig(config) != text) {
+    throw std::runtime_error("the master's config does not read back identically here");
+  }
+  run::validate(config);
+  return std::make_shared<const run::LearningTask>(config, run::LearningTask::Budget::Trial);
+}
+
+// The worker loop; throws only when the protocol itself breaks.
+int serve(const Session& session, int threads, const std::string& version) {
+  std::optional<std::uint64_t> failAt;
+  const int count = workerThreads(session, threads);
+  const std::string host = session.host();
+  std::shared_ptr<const run::LearningTask> learning;
+  EvaluationPool pool(count);
+  auto pause = protocol::kMinPause;
+  while (true) {
+    auto replies = pool.takeReplies(std::chrono::microseconds(0));
+    for (const auto& reply : replies) sendToMaster(reply);
+    if (!replies.empty()) pause = protocol::kMinPause;  // The next task comes soon.
+
+    int arrived = 0;
+    MPI_Status status;
+    protocol::check(MPI_Iprobe(protocol::kMaster, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &status),
+                    "MPI_Iprobe");
+    if (!arrived) {
+      for (const auto& reply : pool.takeReplies(pause)) sendToMaster(reply);
+      pause = std::min(pause * 2, protocol::kMaxPause);
+      continue;
+    }
+    pause = protocol::kMinPause;
+    auto message = protocol::receive(status);
+    switch (status.MPI_TAG) {
+      case protocol::Stop:
+        return 0;  // The master sends Stop only when no task is out.
+      case protocol::Config:
+        try {
+          failAt = injectedFailure();
+          learning = configure(message, version);
+          sendToMaster({protocol::Ready, protocol::Writer().put(std::int32_t{count}).take()});
+        } catch (...) {
+          learning.reset();
+          sendToMaster(failureReply(protocol::kNoTask, host));
+        }
+        break;
+      case protocol::Task:
+        pool.submit([bytes = std::move(message), learning, failAt, host]() {
+          protocol::Reader r(bytes);
+          std::uint64_t task = protocol::kNoTask;
+          try {
+            task = r.get<std::uint64_t>();
+            if (!learning) throw std::runtime_error("a task came before the config");
+            const auto seed = r.get<std::uint64_t>();
+            const auto genome = r.getGenome(static_cast<int>(learning->stateDim()));
+            if (failAt && task == *failAt) {
+              throw std::runtime_error(
+                  fmt::format("injected failure at task {} (GPFD_MPI_INJECT_FAILURE)", task));
+            }
+            Rng rng(seed);
+            const double fitness = run::trialFitness(*learning, genome, rng);
+            return EvaluationPool::Reply{protocol::Result,
+                                         protocol::Writer().put(task).put(fitness).take()};
+          } catch (...) {
+            return failureReply(task, host);
+          }
+        });
+        break;
+      default:
+        throw std::runtime_error(fmt::format("unexpected MPI message (tag {})", status.MPI_TAG));
+    }
+  }
+}
+
+}  // namespace
+
+int workerThreads(const Session& session, int threads) {
+  if (threads > 0) return threads;
+  return std::max(1, tbb::info::default_concurrency() / std::max(1, session.workersOnNode()));
+}
+
+int serveAsWorker(const Session& session, int threads, const std::string& version) {
+  std::signal(SIGINT, SIG_IGN);
+  try {
+    return serve(session, threads, version);
+  } catch (const std::exception& e) {
+    // The protocol itself broke (an MPI error, a message it does not know): the master would
+    // wait for this worker forever, so the whole job ends here; the master's last checkpoint
+    // stays usable.
+    std::fprintf(stderr, "error: MPI worker %d on %s: %s; aborting the MPI job\n", session.rank(),
+                 session.host().c_str(), e.what());
+    MPI_Abort(MPI_COMM_WORLD, 1);
+    return 1;
+  }
+}
+
+}  // namespace gpfd::mpi
