@@ -1,0 +1,88 @@
+// `gpfd reproduce`: the paper's experiments, figures and report in one command.
+#include <fmt/format.h>
+
+#include <csignal>
+#include <cstdlib>
+
+#include "command.hpp"
+#include "config_loading.hpp"
+#include "gpfd/run/reproduce.hpp"
+#include "gpfd/util/error.hpp"
+#include "gpfd/version.hpp"
+
+namespace gpfd::app {
+namespace {
+
+std::atomic<bool> stopRequested{false};
+extern "C" void onReproduceInterrupt(int) {
+  stopRequested.store(true);
+  std::signal(SIGINT, SIG_DFL);
+}
+
+struct ReproduceCli {
+  std::vector<std::string> figures{"all"};
+  std::string scale = "quick";
+  std::uint64_t seed = 1;
+  std::string out = "results/reproduce";
+  int threads = 0;
+  bool quiet = false;
+};
+
+// Runs this same program's `bench jit` (its AOT reference lives in the tool).
+void benchJit(const std::string& dir, bool quick) {
+  const std::string command = fmt::format("/proc/self/exe bench jit --out '{}' {} > '{}.log' 2>&1",
+                                          dir, quick ? "--calls 200000 --runs 3" : "", dir);
+  if (std::system(command.c_str()) != 0) {
+    throw InputError("gpfd bench jit failed; see " + dir + ".log", dir);
+  }
+}
+
+int reproduceCommand(const ReproduceCli& c) {
+  run::ReproduceOptions o;
+  o.paperScale = c.scale == "paper";
+  o.seed = c.seed;
+  o.outDir = c.out;
+  o.threads = c.threads;
+  o.version = kVersion;
+  o.revision = kRevision;
+  o.quiet = c.quiet;
+  o.stop = &stopRequested;
+  o.loadConfig = [](const std::string& name, const std::vector<std::string>& overrides) {
+    return loadConfig(name, overrides);
+  };
+  o.benchJit = benchJit;
+  std::vector<std::string> figures;
+  for (const auto& f : c.figures) {
+    if (f == "all") {
+      figures.insert(figures.end(), run::kFigures.begin(), run::kFigures.end());
+    } else {
+      figures.push_back(f);
+    }
+  }
+  std::signal(SIGINT, onReproduceInterrupt);
+  run::reproduce(figures, o);
+  return 0;
+}
+
+const CommandRegistration registration{
+    "reproduce", [](CLI::App& app) {
+      auto* cmd = app.add_subcommand(
+          "reproduce",
+          "Regenerate the paper's experiments, figures and report (fig1 fig3 fig5 fig6 "
+          "fig7, or all); reruns continue where a previous run stopped");
+      auto c = std::make_shared<ReproduceCli>();
+      cmd->add_option("figures", c->figures, "fig1, fig3, fig5, fig6, fig7 or all")
+          ->capture_default_str();
+      cmd->add_option("--scale", c->scale, "quick (minutes) or paper (the paper's settings)")
+          ->check(CLI::IsMember({"quick", "paper"}))
+          ->capture_default_str();
+      cmd->add_option("--seed", c->seed, "Random seed")->capture_default_str();
+      cmd->add_option("--out", c->out, "Output directory")->capture_default_str();
+      cmd->add_option("--threads", c->threads, "Worker threads (0: all cores)")
+          ->check(CLI::NonNegativeNumber);
+      cmd->add_flag("--quiet", c->quiet, "No progress output");
+      return [c] { return reproduceCommand(*c); };
+    }};
+
+}  // namespace
+}  // namespace gpfd::app

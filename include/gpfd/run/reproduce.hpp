@@ -1,0 +1,44 @@
+// run: `gpfd reproduce`, the paper's experiments regenerated with figures and a report:
+//   fig1  cart-pole, PG + Rprop: original variables, original + sin/cos of the angle, GP features
+//   fig3  the JIT speed-up (gpfd bench jit)
+//   fig5  Acrobot: GP run, discovered vs original features
+//   fig6  3- and 5-segment swimmer: as fig5 with the population's mean fitness; for 3 segments
+//         the best-fitness curves with populations 25, 50 and 100
+//   fig7  Tetris 12x8 with lambda-policy iteration: as fig6
+// Each experiment keeps its runs in OUT/<fig>/...; a rerun resumes unfinished GP runs and reuses
+// finished steps, so a long paper-scale reproduction can be interrupted and continued.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "gpfd/run/experiment_config.hpp"
+
+namespace gpfd::run {
+
+struct ReproduceOptions {
+  bool paperScale = false;  // false: the -quick configs.
+  std::uint64_t seed = 1;
+  std::string outDir = "results/reproduce";
+  int threads = 0;
+  std::string version, revision;
+  bool quiet = false;
+  const std::atomic<bool>* stop = nullptr;  // Set (e.g. by SIGINT) to stop after a checkpoint.
+  // Loads a shipped config by name (configs/NAME.toml) with key=value overrides.
+  std::function<ExperimentConfig(const std::string& name,
+                                 const std::vector<std::string>& overrides)>
+      loadConfig;
+  // Runs the JIT benchmark (gpfd bench jit) into a directory, smaller when `quick`.
+  std::function<void(const std::string& dir, bool quick)> benchJit;
+};
+
+inline const std::vector<std::string> kFigures{"fig1", "fig3", "fig5", "fig6", "fig7"};
+
+// Runs the given figures (a subset of kFigures) and writes OUT/report.md and OUT/report.html
+// covering every figure present in OUT. InputError for an unknown figure name.
+void reproduce(const std::vector<std::string>& figures, const ReproduceOptions& options);
+
+}  // namespace gpfd::run

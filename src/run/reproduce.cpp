@@ -1,0 +1,296 @@
+#include "gpfd/run/reproduce.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <filesystem>
+#include <sstream>
+
+#include "gpfd/expr/features_file.hpp"
+#include "gpfd/expr/parse.hpp"
+#include "gpfd/io/gnuplot.hpp"
+#include "gpfd/io/report.hpp"
+#include "gpfd/rl/fourier_basis.hpp"
+#include "gpfd/run/assessment.hpp"
+#include "gpfd/run/discovery.hpp"
+#include "gpfd/run/state_ranges.hpp"
+#include "gpfd/util/atomic_file.hpp"
+#include "gpfd/util/error.hpp"
+
+namespace gpfd::run {
+namespace {
+namespace fs = std::filesystem;
+
+class Experiment {
+ public:
+  Experiment(const ReproduceOptions& o, std::string figure) : o_(o), dir_(o.outDir + "/" + figure) {
+    fs::create_directories(dir_);
+  }
+
+  const std::string& dir() const { return dir_; }
+
+  ExperimentConfig config(const std::string& base, std::vector<std::string> overrides = {}) const {
+    overrides.push_back("seed=" + std::to_string(o_.seed));
+    return o_.loadConfig(o_.paperScale ? base : base + "-quick", overrides);
+  }
+
+  // Runs, resumes, or reuses the GP run in dir()/name; returns its history.
+  std::vector<GenerationRecord> evolve(const ExperimentConfig& config, const std::string& name) {
+    const std::string dir = dir_ + "/" + name;
+    DiscoveryOptions d;
+    d.outDir = dir;
+    d.threads = o_.threads;
+    d.version = o_.version;
+    d.revision = o_.revision;
+    auto run = fs::exists(dir + "/config.toml") ? Discovery::resume(d, config, std::nullopt)
+                                                : Discovery::start(config, d);
+    static const std::atomic<bool> never{false};
+    run->run(
+        [&](const GenerationRecord& r) {
+          if (!o_.quiet) {
+            fmt::print("  {}: generation {} best {:.6g} mean {:.6g} ({:.1f} s)\n", name,
+                       r.generation, r.best, r.mean, r.seconds);
+            std::fflush(stdout);
+          }
+        },
+        o_.stop ? *o_.stop : never);
+    if (!run->finished())
+      throw InputError("interrupted; run the same command again to continue", dir);
+    return run->history();
+  }
+
+  // The discovered features of the GP run in dir()/name.
+  expr::FeaturesFile discovered(const std::string& name, const LearningTask& task) const {
+    return expr::readFeaturesFile(dir_ + "/" + name + "/best.features", task.stateNames(),
+                                  task.config().env);
+  }
+
+  // Assesses the sets into dir()/name unless a finished assessment is there.
+  void assess(const LearningTask& task, const std::vector<FeatureSet>& sets,
+              const std::string& name, const std::string& title) {
+    const std::string dir = dir_ + "/" + name;
+    if (fs::exists(dir + "/summary.csv")) return;
+    if (!o_.quiet) {
+      fmt::print("  {}: {} feature sets x {} runs\n", name, sets.size(), task.config().assessRuns);
+      std::fflush(stdout);
+    }
+    const auto result =
+        runAssessment(task, sets, task.config().assessRuns, task.config().seed, o_.threads);
+    fs::create_directories(dir);
+    writeAssessment(dir, result, summarizeAssessment(result, 0), title,
+                    task.config().learner == "lpi" ? "lambda-PI iteration" : "policy update");
+  }
+
+ private:
+  const ReproduceOptions& o_;
+  std::string dir_;
+};
+
+std::shared_ptr<const jit::FeatureMap> fourier(const LearningTask& task, int order) {
+  return std::make_shared<const rl::FourierBasis>(
+      rl::FourierBasis::automatic(typicalStateRanges(task.config().env, task.stateNames()), order));
+}
+
+std::string fourierName(const FeatureSet& set) {
+  const auto* basis = dynamic_cast<const rl::FourierBasis*>(set.map.get());
+  return basis->coupling() == rl::FourierBasis::Coupling::Full ? "fourier-3"
+                                                               : "fourier-3-independent";
+}
+
+// The summary table of an assessment, for the report.
+std::vector<std::vector<std::string>> summaryTable(const std::string& dir) {
+  std::vector<std::vector<std::string>> rows{{"feature set", "runs", "final (mean ± 95% CI)",
+                                              "vs original: Welch p", "Mann-Whitney p", "Cohen's d",
+                                              "A12"}};
+  std::istringstream in(readFile(dir + "/summary.csv"));
+  std::string line;
+  std::getline(in, line);  // Header.
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::stringstream cells(line);
+    std::string cell;
+    while (std::getline(cells, cell, ',')) f.push_back(cell);
+    if (f.size() < 12) continue;
+    const auto num = [](const std::string& s) { return std::stod(s); };
+    rows.push_back({f[0], f[1], fmt::format("{:.4g} ± {:.3g}", num(f[2]), num(f[4])),
+                    fmt::format("{:.3g}", num(f[7])), fmt::format("{:.3g}", num(f[9])),
+                    fmt::format("{:.3g}", num(f[10])), fmt::format("{:.3g}", num(f[11]))});
+  }
+  return rows;
+}
+
+// GP fitness per generation: best (and mean) of each run.
+void fitnessPlot(const std::string& base, const std::string& title,
+                 const std::vector<std::pair<std::string, std::vector<GenerationRecord>>>& runs,
+                 bool withMean) {
+  io::LinePlot plot{title, "generation", "fitness", {}, false};
+  for (const auto& [name, history] : runs) {
+    io::Series best{runs.size() > 1 ? name + " best" : "best", {}, {}, {}, {}};
+    io::Series mean{runs.size() > 1 ? name + " mean" : "population mean", {}, {}, {}, {}};
+    for (const auto& r : history) {
+      best.x.push_back(r.generation);
+      best.y.push_back(r.best);
+      if (std::isfinite(r.mean)) {
+        mean.x.push_back(r.generation);
+        mean.y.push_back(r.mean);
+      }
+    }
+    plot.series.push_back(best);
+    if (withMean) plot.series.push_back(mean);
+  }
+  io::plotLines(base, plot);
+}
+
+std::string featuresText(const expr::FeaturesFile& f) {
+  std::string text;
+  for (std::size_t k = 0; k < f.genome.featureCount(); ++k) {
+    text += fmt::format("f{} = {}\n", k + 1, expr::toInfix(f.genome.feature(k), f.variables));
+  }
+  return text;
+}
+
+// A benchmark experiment: GP run, assessment of the discovered features against the original
+// variables (and a Fourier basis for the control tasks), and the report section.
+io::Report benchmark(Experiment& e, const ExperimentConfig& config, const std::string& heading,
+                     const std::string& description, bool withFourier,
+                     std::vector<FeatureSet> extraSets = {}) {
+  const std::string evolveName = "evolve-" + config.name;
+  const auto history = e.evolve(config, evolveName);
+  const LearningTask task(config, LearningTask::Budget::Assessment);
+  const auto features = e.discovered(evolveName, task);
+  std::vector<FeatureSet> sets{
+      {"original", std::make_shared<const jit::RawFeatureMap>(task.stateDim())}};
+  sets.insert(sets.end(), extraSets.begin(), extraSets.end());
+  sets.push_back(
+      {"discovered", genomeFeatureMap(features.genome, task.stateDim(), config.withOriginal)});
+  if (withFourier) {
+    FeatureSet f{"", fourier(task, 3)};
+    f.name = fourierName(f);
+    sets.push_back(f);
+  }
+  const std::string assessName = "assess-" + config.name;
+  e.assess(task, sets, assessName, config.env + " (" + config.name + ")");
+  fitnessPlot(e.dir() + "/fitness-" + config.name,
+              "GP fitness per generation (" + config.name + ")", {{config.name, history}}, true);
+
+  io::Report r(heading);
+  r.heading(heading, 3);
+  r.paragraph(description);
+  r.image(fs::path(e.dir()).filename().string() + "/" + assessName + "/curves.png",
+          "(a) performance of the feature sets: mean over " + std::to_string(config.assessRuns) +
+              " runs with a 95% confidence band");
+  r.image(fs::path(e.dir()).filename().string() + "/fitness-" + config.name + ".png",
+          "(b) best and mean fitness of the GP population per generation");
+  r.table(summaryTable(e.dir() + "/" + assessName));
+  r.paragraph("Discovered features (simplified; `" + fs::path(e.dir()).filename().string() + "/" +
+              evolveName + "/best.features`):");
+  r.code(featuresText(features));
+  return r;
+}
+
+io::Report figure1(Experiment& e) {
+  const auto config = e.config("cartpole");
+  const LearningTask task(config, LearningTask::Budget::Assessment);
+  expr::Genome sincos;
+  for (const char* f : {"x", "dx", "th", "dth", "sin(th)", "cos(th)"}) {
+    sincos.addFeature(expr::parseInfix(f, task.stateNames()));
+  }
+  return benchmark(e, config, "Figure 1: cart-pole, policy gradient with Rprop",
+                   "The paper's Figure 1: learning with the original state variables, with sin and "
+                   "cos of the pole angle added, and with the features GP discovers.",
+                   true, {{"original+sin/cos", genomeFeatureMap(sincos, task.stateDim(), false)}});
+}
+
+io::Report figure3(Experiment& e, const ReproduceOptions& o) {
+  if (!fs::exists(e.dir() + "/jit/jit.csv")) o.benchJit(e.dir() + "/jit", !o.paperScale);
+  io::Report r("Figure 3");
+  r.heading("Figure 3: speed-up of compiled feature functions", 3);
+  r.paragraph(
+      "Random complete binary trees of depth 2..8; time per call of the tree-walking "
+      "interpreter, the fast interpreter, the JIT (asmjit), ahead-of-time compiled C++ and "
+      "the AVX2 batch kernel (`gpfd bench jit`).");
+  r.image("fig3/jit/jit.png", "speed-up over the tree-walking interpreter per depth");
+  if (fs::exists(e.dir() + "/jit/jit_summary.txt"))
+    r.code(readFile(e.dir() + "/jit/jit_summary.txt"));
+  return r;
+}
+
+io::Report figure6(Experiment& e) {
+  io::Report r("Figure 6");
+  r.append(benchmark(e, e.config("swimmer3"), "Figure 6: 3-segment swimmer",
+                     "Policy gradient with Rprop on the 3-segment swimmer (Coulom 2002).", true));
+  r.append(benchmark(e, e.config("swimmer5"), "Figure 6: 5-segment swimmer",
+                     "Policy gradient with Rprop on the 5-segment swimmer.", true));
+  // Best fitness with populations of 25, 50 and 100 (3 segments).
+  std::vector<std::pair<std::string, std::vector<GenerationRecord>>> runs;
+  for (int population : {25, 50, 100}) {
+    auto config = e.config("swimmer3", {"gp.population=" + std::to_string(population)});
+    config.name += "-pop" + std::to_string(population);
+    runs.emplace_back("population " + std::to_string(population),
+                      e.evolve(config, "evolve-" + config.name));
+  }
+  fitnessPlot(e.dir() + "/population-sizes", "3-segment swimmer: best fitness per generation", runs,
+              false);
+  r.heading("Figure 6: population size (3 segments)", 3);
+  r.image("fig6/population-sizes.png", "best fitness per generation with populations 25, 50, 100");
+  return r;
+}
+
+io::Report runFigure(const std::string& figure, Experiment& e, const ReproduceOptions& o) {
+  if (figure == "fig1") return figure1(e);
+  if (figure == "fig3") return figure3(e, o);
+  if (figure == "fig5") {
+    return benchmark(
+        e, e.config("acrobot"), "Figure 5: Acrobot",
+        "Policy gradient with Rprop on Acrobot: the GP run and the discovered features "
+        "against the original state variables.",
+        true);
+  }
+  if (figure == "fig6") return figure6(e);
+  return benchmark(e, e.config("tetris"), "Figure 7: Tetris 12x8",
+                   "Approximate lambda-policy iteration on Tetris (12 rows, 8 columns).", false);
+}
+
+}  // namespace
+
+void reproduce(const std::vector<std::string>& figures, const ReproduceOptions& o) {
+  for (const auto& f : figures) {
+    if (std::find(kFigures.begin(), kFigures.end(), f) == kFigures.end()) {
+      throw InputError("unknown figure '" + f + "' (fig1, fig3, fig5, fig6, fig7 or all)", f);
+    }
+  }
+  fs::create_directories(o.outDir);
+  for (const auto& figure : figures) {
+    if (!o.quiet) {
+      fmt::print("{}:\n", figure);
+      std::fflush(stdout);
+    }
+    const auto start = std::chrono::steady_clock::now();
+    Experiment e(o, figure);
+    io::Report part = runFigure(figure, e, o);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    part.paragraph(
+        fmt::format("Wall time of this experiment: {:.0f} s ({} scale, seed {}, "
+                    "gpfd {} {}).",
+                    seconds, o.paperScale ? "paper" : "quick", o.seed, o.version, o.revision));
+    writeFileAtomically(e.dir() + "/section.json", part.json());
+  }
+
+  // The report covers every figure whose section exists in the output directory.
+  io::Report report("gpfd: reproduction of Girgin & Preux, feature discovery with GP");
+  report.paragraph(fmt::format(
+      "Generated by `gpfd reproduce` (gpfd {} {}). Each figure's data, configs, plots (PNG and "
+      "SVG) and GP runs are in its directory; `config.toml` in each GP run is the fully resolved "
+      "config.",
+      o.version, o.revision));
+  for (const auto& figure : kFigures) {
+    const std::string path = o.outDir + "/" + figure + "/section.json";
+    if (fs::exists(path)) report.append(io::Report::fromJson(readFile(path)));
+  }
+  writeFileAtomically(o.outDir + "/report.md", report.markdown());
+  writeFileAtomically(o.outDir + "/report.html", report.html(o.outDir));
+  if (!o.quiet) fmt::print("report: {}/report.html and report.md\n", o.outDir);
+}
+
+}  // namespace gpfd::run
