@@ -11,6 +11,7 @@
 #include "gpfd/run/assessment.hpp"
 #include "gpfd/run/state_ranges.hpp"
 #include "gpfd/util/error.hpp"
+#include "param_routing.hpp"
 
 namespace gpfd::app {
 namespace {
@@ -45,12 +46,8 @@ run::ExperimentConfig assessConfig(const AssessOptions& o) {
   }
   const auto& info = env::Registry::global().info(config.env);
   for (const auto& p : o.params) {
-    const auto eq = p.find('=');
-    if (eq == std::string::npos || eq == 0) throw InputError("expected k=v", "--param " + p);
-    const std::string key = p.substr(0, eq), value = p.substr(eq + 1);
-    bool isEnvParam = false;
-    for (const auto& spec : info.params) isEnvParam = isEnvParam || spec.name == key;
-    (isEnvParam ? config.envParams : config.assessParams)[key] = value;
+    const auto [key, value] = splitKeyValue(p, "--param " + p);
+    (isEnvParam(info, key) ? config.envParams : config.assessParams)[key] = value;
   }
   if (o.budget > 0) {
     config.assessParams[config.learner == "lpi" ? "iterations" : "updates"] =

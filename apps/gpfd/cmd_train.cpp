@@ -17,6 +17,7 @@
 #include "gpfd/rl/tetris_afterstates.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
+#include "param_routing.hpp"
 
 namespace gpfd::app {
 namespace {
@@ -67,14 +68,8 @@ int runTrain(const TrainArgs& args) {
   std::string start;
   bool biasGiven = false;
   for (const auto& kv : args.params) {
-    const auto eq = kv.find('=');
-    if (eq == std::string::npos || eq == 0) {
-      throw InputError(fmt::format("expected k=v, got '{}'", kv), "--param");
-    }
-    const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
-    bool isEnvParam = false;
-    for (const auto& spec : info.params) isEnvParam = isEnvParam || spec.name == key;
-    if (isEnvParam) {
+    const auto [key, value] = splitKeyValue(kv, "--param");
+    if (isEnvParam(info, key)) {
       envParams[key] = value;
       continue;
     }
