@@ -116,12 +116,19 @@ std::vector<double> MpiEvaluator::evaluate(const std::vector<const expr::Genome*
     ++inFlight;
   };
 
-  // Deal one task to each worker in turn until the credits or the genomes run out, so that a
-  // short batch spreads over all workers.
-  for (bool dealt = true; dealt && next < n;) {
+  // A worker may hold one task beyond its threads (queued locally), so that it never waits for
+  // the round trip to the master between tasks; only while more tasks remain than there are
+  // workers, so that the end of a batch still spreads over all of them.
+  const auto wantsAnother = [&](int worker) {
+    const int extra = n - next > credit_.size() ? 1 : 0;
+    return next < n && credit_[static_cast<std::size_t>(worker - 1)] + extra > 0;
+  };
+  // Deal one task to each worker in turn while they want one, so that a short batch spreads
+  // over all workers.
+  for (bool dealt = true; dealt;) {
     dealt = false;
-    for (int w = 1; w < session_.size() && next < n; ++w) {
-      if (credit_[static_cast<std::size_t>(w - 1)] > 0) {
+    for (int w = 1; w < session_.size(); ++w) {
+      if (wantsAnother(w)) {
         send(w);
         dealt = true;
       }
@@ -149,7 +156,7 @@ std::vector<double> MpiEvaluator::evaluate(const std::vector<const expr::Genome*
     }
     ++credit_[static_cast<std::size_t>(worker - 1)];
     --inFlight;
-    if (!failure && next < n) send(worker);
+    while (!failure && wantsAnother(worker)) send(worker);
     completeFinished(sending);
   }
   for (auto& message : sending) {

@@ -1,8 +1,9 @@
 // mpi: the master's side of distributed fitness evaluation. MpiEvaluator farms the genomes of a
 // batch out to the worker ranks (1..N-1, each in serveAsWorker) with dynamic load balancing: a
-// worker holds at most `credit` tasks (its thread count) and gets the next genome whenever it
-// returns a result. Each genome's fitness depends only on (genome, seed, config), so the results
-// are bit-identical to ThreadEvaluator's for any number of ranks and threads.
+// worker holds as many tasks as it has threads, plus one queued while many remain, and gets the
+// next genome whenever it returns a result. Each genome's fitness depends only on (genome, seed,
+// config), so the results are bit-identical to ThreadEvaluator's for any number of ranks and
+// threads.
 #pragma once
 
 #include <cstdint>
@@ -53,7 +54,8 @@ class MpiEvaluator final : public gp::Evaluator {
  private:
   const Session& session_;
   std::function<void()> onEvaluated_;
-  std::vector<int> credit_;  // credit_[w - 1]: tasks worker rank w may still take.
+  // credit_[w - 1]: worker rank w's threads minus its tasks out (-1: one task queued there).
+  std::vector<int> credit_;
   std::uint64_t nextTask_ = 0;
 };
 
