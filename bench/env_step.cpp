@@ -6,12 +6,15 @@
 #include <vector>
 
 #include "gpfd/env/environment.hpp"
+#include "gpfd/env/swimmer.hpp"
 #include "gpfd/env/tetris.hpp"
 
 namespace {
 
 using gpfd::Rng;
 using namespace gpfd::env;
+
+void stepOnRandomActions(benchmark::State& state, Environment& env);
 
 // Steps an environment on pre-drawn random actions, resetting at the end of an episode.
 void stepEnvironment(benchmark::State& state, const std::string& name, const Params& params) {
@@ -28,20 +31,24 @@ void stepEnvironment(benchmark::State& state, const std::string& name, const Par
     state.SetItemsProcessed(state.iterations());
     return;
   }
-  auto env = Registry::global().make(name, params);
+  stepOnRandomActions(state, *Registry::global().make(name, params));
+}
+
+// Steps `env` on 4096 pre-drawn random actions in turn, resetting at the end of an episode.
+void stepOnRandomActions(benchmark::State& state, Environment& env) {
   Rng rng(1);
-  env->reset(rng);
-  const std::size_t components = env->actionSpace().components;
+  env.reset(rng);
+  const std::size_t components = env.actionSpace().components;
   std::vector<double> actions(4096 * components);
   for (std::size_t i = 0; i < 4096; ++i) {
-    env->sampleAction(rng, std::span<double>(actions.data() + i * components, components));
+    env.sampleAction(rng, std::span<double>(actions.data() + i * components, components));
   }
   std::size_t i = 0;
   for (auto _ : state) {
     const StepResult r =
-        env->step(std::span<const double>(actions.data() + (i & 4095) * components, components));
-    benchmark::DoNotOptimize(env->state().data());
-    if (r.terminated || r.truncated) env->reset(rng);
+        env.step(std::span<const double>(actions.data() + (i & 4095) * components, components));
+    benchmark::DoNotOptimize(env.state().data());
+    if (r.terminated || r.truncated) env.reset(rng);
     ++i;
   }
   state.SetItemsProcessed(state.iterations());
@@ -61,6 +68,15 @@ void BM_CartPoleClsquare(benchmark::State& s) {
 // Default swimmer step: 10 Euler integration steps of 0.01 s.
 void BM_Swimmer(benchmark::State& s) {
   stepEnvironment(s, "swimmer", {{"segments", std::to_string(s.range(0))}});
+}
+// The same with the original solver (run-time sized Eigen matrices and PartialPivLU), to compare
+// with BM_Swimmer in one run.
+void BM_SwimmerReference(benchmark::State& s) {
+  SwimmerConfig config;
+  config.segments = static_cast<int>(s.range(0));
+  Swimmer swimmer(config);
+  swimmer.setReferenceSolver(true);
+  stepOnRandomActions(s, swimmer);
 }
 // One integration step per control step (Euler; RK4), i.e. one / four solves of the system.
 void BM_SwimmerOneEulerStep(benchmark::State& s) {
@@ -111,6 +127,7 @@ BENCHMARK(BM_CartPole);
 BENCHMARK(BM_CartPoleDiscrete);
 BENCHMARK(BM_CartPoleClsquare);
 BENCHMARK(BM_Swimmer)->Arg(3)->Arg(5);
+BENCHMARK(BM_SwimmerReference)->Arg(3)->Arg(5);
 BENCHMARK(BM_SwimmerOneEulerStep)->Arg(3)->Arg(5);
 BENCHMARK(BM_SwimmerOneRk4Step)->Arg(3)->Arg(5);
 BENCHMARK(BM_TetrisStep);

@@ -88,6 +88,32 @@ Swimmer::Swimmer(SwimmerConfig config) : config_(config), n_(config.segments) {
       }
     }
   }
+  double largest = 0.0, asymmetry = 0.0;
+  for (Eigen::Index i = 0; i < n_; ++i) {
+    for (Eigen::Index j = 0; j < n_; ++j) {
+      largest = std::max(largest, std::fabs(couple_(i, j)));
+      asymmetry = std::max(asymmetry, std::fabs(couple_(i, j) - couple_(j, i)));
+    }
+  }
+  fixedSizeKernel_ = n_ <= kSwimmerFixedMaxSegments && asymmetry <= 1e-12 * largest;
+  if (fixedSizeKernel_) {
+    body_.segments = n_;
+    body_.inverseTotalMass = 1.0 / totalMass_;
+    for (std::size_t i = 0; i < n; ++i) {
+      body_.mass[i] = mass_[i];
+      body_.length[i] = length_[i];
+      body_.inertia[i] = inertia_[i];
+      body_.massWeight[i] = massWeight_[i];
+      body_.dragFactor[i] = -config_.viscosity * length_[i];
+      body_.viscousMoment[i] = -config_.viscosity * length_[i] * length_[i] * length_[i] / 12.0;
+      for (std::size_t j = 0; j < n; ++j) {
+        const double g = couple_(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
+        const std::size_t at = i * SwimmerBody::kMax + j;
+        body_.matrixCoupling[at] = -length_[i] * length_[j] * g;
+        body_.centripetalCoupling[at] = g * length_[j];
+      }
+    }
+  }
   system_.setZero(n_, n_);
   rhs_.setZero(n_);
   solution_.setZero(n_);
@@ -129,6 +155,15 @@ void Swimmer::setState(std::span<const double> state) {
 
 void Swimmer::derivative(std::span<const double> s, std::span<const double> torque,
                          std::span<double> out) {
+  if (fixedSizeKernel_) {
+    swimmerFixedDerivative(body_, s.data(), torque.data(), out.data());
+  } else {
+    derivativeReference(s, torque, out);
+  }
+}
+
+void Swimmer::derivativeReference(std::span<const double> s, std::span<const double> torque,
+                                  std::span<double> out) {
   const auto n = static_cast<std::size_t>(n_);
   const double k = config_.viscosity;
   for (std::size_t i = 0; i < n; ++i) {
@@ -196,20 +231,20 @@ void Swimmer::derivative(std::span<const double> s, std::span<const double> torq
   }
 }
 
-void Swimmer::integrate(double h) {
+void Swimmer::integrateReference(double h) {
   const std::size_t dim = state_.size();
   if (config_.integrator == Integrator::Euler) {
-    derivative(state_, torque_, k1_);
+    derivativeReference(state_, torque_, k1_);
     for (std::size_t i = 0; i < dim; ++i) state_[i] += h * k1_[i];
   } else {
     const double half = h / 2.0;
-    derivative(state_, torque_, k1_);
+    derivativeReference(state_, torque_, k1_);
     for (std::size_t i = 0; i < dim; ++i) tmp_[i] = state_[i] + half * k1_[i];
-    derivative(tmp_, torque_, k2_);
+    derivativeReference(tmp_, torque_, k2_);
     for (std::size_t i = 0; i < dim; ++i) tmp_[i] = state_[i] + half * k2_[i];
-    derivative(tmp_, torque_, k3_);
+    derivativeReference(tmp_, torque_, k3_);
     for (std::size_t i = 0; i < dim; ++i) tmp_[i] = state_[i] + h * k3_[i];
-    derivative(tmp_, torque_, k4_);
+    derivativeReference(tmp_, torque_, k4_);
     const double sixth = h / 6.0;
     for (std::size_t i = 0; i < dim; ++i) {
       state_[i] += sixth * (k1_[i] + 2.0 * k2_[i] + 2.0 * k3_[i] + k4_[i]);
@@ -232,7 +267,12 @@ StepResult Swimmer::step(std::span<const double> action) {
         std::isnan(action[j]) ? 0.0 : std::clamp(action[j], -config_.maxTorque, config_.maxTorque);
   }
   const double h = config_.dt / config_.substeps;
-  for (int i = 0; i < config_.substeps; ++i) integrate(h);
+  if (fixedSize()) {
+    swimmerFixedIntegrate(body_, config_.integrator, h, config_.substeps, state_.data(),
+                          torque_.data());
+  } else {
+    for (int i = 0; i < config_.substeps; ++i) integrateReference(h);
+  }
   ++steps_;
   StepResult result;
   result.reward = state_[0] * config_.dt;

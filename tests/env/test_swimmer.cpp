@@ -3,8 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <numbers>
+#include <sstream>
+#include <string>
 
 #include "gpfd/env/swimmer.hpp"
 #include "gpfd/util/error.hpp"
@@ -122,13 +126,100 @@ TEST(Swimmer, MatchesAnIndependentSolutionForTwoToSixSegments) {
       for (int j = 0; j < n - 1; ++j) u.push_back(rng.uniform(-5, 5));
       const auto got = accelerations(sw, s, u);
       const auto want = referenceAccelerations(n, 10.0, s, u);
+      std::vector<double> d(s.size());
+      sw.derivativeReference(s, u, d);
+      std::vector<double> gotReference{d[0], d[1]};
+      for (int i = 0; i < n; ++i) gotReference.push_back(d[3 + 2 * i]);
       ASSERT_EQ(got.size(), want.size());
       for (std::size_t i = 0; i < got.size(); ++i) {
         EXPECT_NEAR(got[i], want[i], 1e-9 * std::max(1.0, std::fabs(want[i])))
             << "n=" << n << " trial " << trial << " index " << i;
+        EXPECT_NEAR(gotReference[i], want[i], 1e-9 * std::max(1.0, std::fabs(want[i])))
+            << "reference solver, n=" << n << " trial " << trial << " index " << i;
       }
     }
   }
+}
+
+std::string scientific(double x) {
+  std::ostringstream out;
+  out << std::scientific << std::setprecision(2) << x;
+  return out.str();
+}
+
+// |got_i - want_i| <= 1e-12 max_j |want_j| for every component (the fixed-size kernel against
+// the original Eigen LU solve it replaced: the same equations, rounded differently); returns the
+// largest difference seen relative to that scale.
+double expectSameWithin1e12(std::span<const double> got, std::span<const double> want,
+                            const std::string& where) {
+  EXPECT_EQ(got.size(), want.size()) << where;
+  double scale = 0.0;
+  for (double v : want) scale = std::max(scale, std::fabs(v));
+  double worst = 0.0;
+  for (std::size_t i = 0; i < std::min(got.size(), want.size()); ++i) {
+    const double diff = std::fabs(got[i] - want[i]);
+    EXPECT_LE(diff, 1e-12 * scale) << where << " index " << i;
+    if (diff > 0.0) worst = std::max(worst, diff / scale);
+  }
+  return worst;
+}
+
+TEST(Swimmer, FixedSizeDerivativeMatchesTheReferenceSolve) {
+  Rng rng(34);
+  double worst = 0.0;
+  for (int n = 2; n <= kSwimmerFixedMaxSegments + 1; ++n) {  // n = 9 takes the reference path.
+    for (const double k : {10.0, 0.0}) {
+      SwimmerConfig config;
+      config.segments = n;
+      config.viscosity = k;
+      Swimmer sw(config);
+      for (int trial = 0; trial < 200; ++trial) {
+        auto s = randomState(rng, n);
+        if (trial % 4 == 3) {
+          for (double& v : s) v *= 10.0;  // Angles beyond [-pi, pi], fast rotation.
+        }
+        std::vector<double> u;
+        for (int j = 0; j < n - 1; ++j) u.push_back(rng.uniform(-5, 5));
+        std::vector<double> got(s.size()), want(s.size());
+        sw.derivative(s, u, got);
+        sw.derivativeReference(s, u, want);
+        worst = std::max(worst,
+                         expectSameWithin1e12(got, want,
+                                              "n=" + std::to_string(n) + " k=" + std::to_string(k) +
+                                                  " trial " + std::to_string(trial)));
+      }
+    }
+  }
+  RecordProperty("largest_relative_difference", scientific(worst));
+}
+
+TEST(Swimmer, FixedSizeStepMatchesTheReferenceStep) {
+  Rng rng(55);
+  double worst = 0.0;
+  for (int n = 2; n <= 6; ++n) {
+    for (const char* integrator : {"euler", "rk4"}) {
+      const Params params{
+          {"segments", std::to_string(n)}, {"integrator", integrator}, {"horizon", "0"}};
+      Swimmer fast(SwimmerConfig::fromParams(params));
+      Swimmer reference(SwimmerConfig::fromParams(params));
+      reference.setReferenceSolver(true);
+      reference.setState(randomState(rng, n));
+      std::vector<double> u(static_cast<std::size_t>(n - 1));
+      // Along a random-action trajectory of the reference, one step of each from the same state.
+      for (int t = 0; t < 50; ++t) {
+        fast.setState(reference.state());
+        reference.sampleAction(rng, u);
+        const double fastReward = fast.step(u).reward;
+        const double referenceReward = reference.step(u).reward;
+        const std::string where =
+            "n=" + std::to_string(n) + " " + integrator + " step " + std::to_string(t);
+        worst = std::max(worst, expectSameWithin1e12(fast.state(), reference.state(), where));
+        EXPECT_LE(std::fabs(fastReward - referenceReward), 1e-12 * std::fabs(referenceReward))
+            << where;
+      }
+    }
+  }
+  RecordProperty("largest_relative_difference", scientific(worst));
 }
 
 TEST(Swimmer, StateNamesActionSpaceAndReset) {

@@ -7,6 +7,7 @@
 
 #include "gpfd/env/environment.hpp"
 #include "gpfd/env/integrate.hpp"
+#include "gpfd/env/swimmer_fixed_size.hpp"
 
 namespace gpfd::env {
 
@@ -46,12 +47,22 @@ class Swimmer final : public Environment {
   const SwimmerConfig& config() const { return config_; }
   int segments() const { return n_; }
   // d/dt state at `state` (2n + 2 values) under joint torques `torque` (n - 1 values, used as
-  // given), written to `out` (2n + 2 values). Solves the linear system of BENCHMARKS.md.
+  // given), written to `out` (2n + 2 values). Solves the linear system of BENCHMARKS.md: with the
+  // fixed-size kernel (swimmer_fixed_size.hpp) for n <= kSwimmerFixedMaxSegments, otherwise with
+  // derivativeReference.
   void derivative(std::span<const double> state, std::span<const double> torque,
                   std::span<double> out);
+  // The same with run-time sized Eigen matrices and Eigen's PartialPivLU: the original
+  // implementation, kept as the reference for tests and benchmarks.
+  void derivativeReference(std::span<const double> state, std::span<const double> torque,
+                           std::span<double> out);
+  // When on, step() integrates with derivativeReference (for tests and benchmarks; default off).
+  void setReferenceSolver(bool on) { referenceSolver_ = on; }
 
  private:
-  void integrate(double h);
+  void integrateReference(double h);
+
+  bool fixedSize() const { return !referenceSolver_ && fixedSizeKernel_; }
 
   SwimmerConfig config_;
   int n_;
@@ -66,6 +77,11 @@ class Swimmer final : public Environment {
   std::vector<double> mass_, length_, inertia_, massWeight_;
   double totalMass_ = 0.0;
   Eigen::MatrixXd couple_;
+  // The same constants for the fixed-size kernel, used when n <= kSwimmerFixedMaxSegments and C
+  // is symmetric (always, for a body of equal segments).
+  SwimmerBody body_;
+  bool fixedSizeKernel_ = false;
+  bool referenceSolver_ = false;
 
   // Scratch, sized once.
   Eigen::MatrixXd system_;
