@@ -34,6 +34,15 @@ std::vector<EvaluationPool::Reply> EvaluationPool::takeReplies(std::chrono::micr
   return out;
 }
 
+std::vector<EvaluationPool::Reply> EvaluationPool::awaitReplies() {
+  std::unique_lock lock(mutex_);
+  replyReady_.wait(lock, [this] { return !replies_.empty(); });
+  std::vector<Reply> out;
+  out.swap(replies_);
+  pending_ -= out.size();
+  return out;
+}
+
 std::size_t EvaluationPool::pending() const {
   std::lock_guard lock(mutex_);
   return pending_;

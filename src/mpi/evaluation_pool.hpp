@@ -30,6 +30,8 @@ class EvaluationPool {
   void submit(Job job);
   // Waits up to `pause` for at least one reply, then returns every reply ready (maybe none).
   std::vector<Reply> takeReplies(std::chrono::microseconds pause);
+  // Waits until at least one reply is ready (some job must be pending), then returns them all.
+  std::vector<Reply> awaitReplies();
   // Jobs submitted whose replies were not taken yet.
   std::size_t pending() const;
 

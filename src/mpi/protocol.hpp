@@ -81,8 +81,10 @@ std::vector<char> receive(const MPI_Status& status);
 // (MPICH's blocking calls spin, which would steal a core from the computing ranks).
 MPI_Status waitForMessage(int source);
 
-// Sleep between polls: from kMinPause, doubling up to kMaxPause while nothing arrives.
+// Sleep between polls: from kMinPause, doubling up to kMaxPause while nothing arrives. The
+// queued task of each worker (mpi_evaluator.hpp) hides this latency when evaluations take
+// longer than kMaxPause; shorter pauses cost CPU in every idle process.
 inline constexpr std::chrono::microseconds kMinPause{10};
-inline constexpr std::chrono::microseconds kMaxPause{200};
+inline constexpr std::chrono::microseconds kMaxPause{1000};
 
 }  // namespace gpfd::mpi::protocol

@@ -92,6 +92,13 @@ int serve(const Session& session, int threads, const std::string& version) {
     MPI_Status status;
     protocol::check(MPI_Iprobe(protocol::kMaster, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &status),
                     "MPI_Iprobe");
+    if (!arrived && pool.pending() >= static_cast<std::size_t>(count)) {
+      // Every thread is busy: nothing from the master is needed before one finishes (the master
+      // sends Stop only when no task is out), so sleep until then instead of polling.
+      for (const auto& reply : pool.awaitReplies()) sendToMaster(reply);
+      pause = protocol::kMinPause;
+      continue;
+    }
     if (!arrived) {
       for (const auto& reply : pool.takeReplies(pause)) sendToMaster(reply);
       pause = std::min(pause * 2, protocol::kMaxPause);

@@ -137,6 +137,15 @@ TEST_F(MpiEvolve, WorkerSetupErrorReachesTheMaster) {
   EXPECT_FALSE(std::filesystem::exists(dir));
 }
 
+TEST_F(MpiEvolve, MasterInputErrorReleasesTheWorkers) {
+  // The master refuses a directory that holds a run; the waiting workers are told to stop.
+  const auto r = runMpi(3, "evolve " + tinyConfig() + " --quiet --out " + reference_);
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("error: the directory already holds a run"), std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("timeout"), std::string::npos) << r.output;
+}
+
 TEST_F(MpiEvolve, SigintStopsEveryRankAfterACheckpoint) {
   const auto dir = freshDir("mpi-interrupted");
   const std::string logPath = dir + ".log";
