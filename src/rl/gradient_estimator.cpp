@@ -12,18 +12,23 @@ EpisodicGradientEstimator::EpisodicGradientEstimator(Eigen::Index parameterCount
 
 void EpisodicGradientEstimator::addEpisode(const Eigen::VectorXd& eligibility,
                                            double episodeReturn) {
+  // With the optimal baseline the estimate is invariant to shifting every return by a constant;
+  // shifting by the batch's first return makes it exactly 0 when all returns are equal (rounding
+  // would otherwise leave ~1e-13 of random sign, on which Rprop still takes full steps).
+  if (episodes_ == 0) offset_ = optimalBaseline_ ? episodeReturn : 0.0;
   ++episodes_;
+  const double shifted = episodeReturn - offset_;
   sumE_ += eligibility;
-  sumER_ += episodeReturn * eligibility;
+  sumER_ += shifted * eligibility;
   sumE2_ += eligibility.cwiseAbs2();
-  sumE2R_ += episodeReturn * eligibility.cwiseAbs2();
+  sumE2R_ += shifted * eligibility.cwiseAbs2();
 }
 
 void EpisodicGradientEstimator::baseline(Eigen::VectorXd& out) const {
   out.setZero(sumE_.size());
   if (!optimalBaseline_) return;
   for (Eigen::Index k = 0; k < out.size(); ++k) {
-    if (sumE2_[k] > 0.0) out[k] = sumE2R_[k] / sumE2_[k];
+    if (sumE2_[k] > 0.0) out[k] = offset_ + sumE2R_[k] / sumE2_[k];
   }
 }
 
@@ -40,6 +45,7 @@ void EpisodicGradientEstimator::gradient(Eigen::VectorXd& out) const {
 
 void EpisodicGradientEstimator::clear() {
   episodes_ = 0;
+  offset_ = 0.0;
   sumE_.setZero();
   sumER_.setZero();
   sumE2_.setZero();

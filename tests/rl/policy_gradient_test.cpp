@@ -134,6 +134,23 @@ TEST(GradientEstimator, BaselineIsTheWeightedMeanReturn) {
   EXPECT_NEAR(g[0], -1.8, 1e-12);
 }
 
+// Equal returns carry no information: the estimate is exactly zero, not rounding noise (on whose
+// sign Rprop would still step).
+TEST(GradientEstimator, EqualReturnsGiveAnExactlyZeroGradient) {
+  EpisodicGradientEstimator estimator(3, true);
+  Rng rng(5);
+  for (int e = 0; e < 10; ++e) {
+    Eigen::VectorXd eligibility(3);
+    for (int k = 0; k < 3; ++k) eligibility[k] = rng.normal();
+    estimator.addEpisode(eligibility, -500.0);
+  }
+  Eigen::VectorXd g, b;
+  estimator.gradient(g);
+  estimator.baseline(b);
+  EXPECT_EQ(g, Eigen::VectorXd::Zero(3));
+  EXPECT_EQ(b, Eigen::VectorXd::Constant(3, -500.0));
+}
+
 TEST(PolicyGradient, LearnsTheBandit) {
   LinearBandit env(0.8, 0.0);
   const jit::RawFeatureMap raw(1);

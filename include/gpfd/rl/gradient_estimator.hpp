@@ -25,6 +25,7 @@ class EpisodicGradientEstimator {
  private:
   bool optimalBaseline_;
   long episodes_ = 0;
+  double offset_ = 0.0;  // Subtracted from every return (the first one, with the baseline).
   Eigen::VectorXd sumE_, sumER_, sumE2_, sumE2R_;
 };
 
