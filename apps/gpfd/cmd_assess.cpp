@@ -74,8 +74,12 @@ int assess(const AssessOptions& o) {
     for (const auto& s : sets) {
       if (s.name == name) name += "-" + std::to_string(sets.size());
     }
-    sets.push_back({name, run::genomeFeatureMap(file.genome, dim, false)});
-    if (o.withOriginal) {
+    // Assessed as GP evaluated them: with the original variables appended when the config's
+    // fitness.with_original says so; --with-original adds that variant as a further set.
+    const bool asEvolved = config.withOriginal;
+    sets.push_back({name + (asEvolved ? "+original" : ""),
+                    run::genomeFeatureMap(file.genome, dim, asEvolved)});
+    if (o.withOriginal && !asEvolved) {
       sets.push_back({name + "+original", run::genomeFeatureMap(file.genome, dim, true)});
     }
   }
@@ -104,9 +108,12 @@ int assess(const AssessOptions& o) {
                        config.learner == "lpi" ? "iteration" : "policy update");
   if (!o.quiet) {
     for (const auto& row : summary) {
-      fmt::print("{:<24} final {:.6g} ± {:.3g}  Welch p {:.3g}  Mann-Whitney p {:.3g}  d {:.3g}\n",
-                 row.name, row.final.mean, row.final.halfWidth, row.vsBaseline.welchP,
-                 row.vsBaseline.mannWhitneyP, row.vsBaseline.cohenD);
+      fmt::print(
+          "{:<24} final {:.6g} ± {:.3g} (Welch p {:.3g}, Mann-Whitney p {:.3g}, d {:.3g})  area "
+          "{:.6g} (Welch p {:.3g})\n",
+          row.name, row.final.mean, row.final.halfWidth, row.vsBaseline.welchP,
+          row.vsBaseline.mannWhitneyP, row.vsBaseline.cohenD, row.area.mean,
+          row.areaVsBaseline.welchP);
     }
     fmt::print("results in {}\n", out);
   }

@@ -20,6 +20,17 @@ std::vector<double> AssessmentResult::finals(std::size_t set) const {
   return out;
 }
 
+std::vector<double> AssessmentResult::areas(std::size_t set) const {
+  std::vector<double> out;
+  for (const auto& curve : curves[set]) {
+    double sum = 0.0;
+    for (const auto& p : curve.points) sum += p.meanReturn;
+    out.push_back(curve.points.empty() ? -std::numeric_limits<double>::infinity()
+                                       : sum / static_cast<double>(curve.points.size()));
+  }
+  return out;
+}
+
 AssessmentResult runAssessment(const LearningTask& task, const std::vector<FeatureSet>& sets,
                                int runs, std::uint64_t seed, int threads,
                                std::atomic<long>* progress) {
@@ -42,9 +53,12 @@ AssessmentResult runAssessment(const LearningTask& task, const std::vector<Featu
 std::vector<SetSummary> summarizeAssessment(const AssessmentResult& result, std::size_t baseline) {
   std::vector<SetSummary> out;
   const auto base = result.finals(baseline);
+  const auto baseArea = result.areas(baseline);
   for (std::size_t s = 0; s < result.names.size(); ++s) {
     const auto finals = result.finals(s);
-    SetSummary row{result.names[s], summarize(finals), compare(finals, base), 0};
+    const auto areas = result.areas(s);
+    SetSummary row{result.names[s],  summarize(finals),        compare(finals, base),
+                   summarize(areas), compare(areas, baseArea), 0};
     for (const auto& c : result.curves[s]) row.diverged += c.diverged ? 1 : 0;
     out.push_back(row);
   }
@@ -55,7 +69,7 @@ void writeAssessment(const std::string& dir, const AssessmentResult& result,
                      const std::vector<SetSummary>& summary, const std::string& title,
                      const std::string& xlabel) {
   std::string curves = "set,update,episodes,runs,mean,ci_low,ci_high\n";
-  std::string finals = "set,run,final\n";
+  std::string finals = "set,run,final,area\n";
   io::LinePlot plot{title, xlabel, "mean return", {}, false};
   for (std::size_t s = 0; s < result.names.size(); ++s) {
     const auto& runs = result.curves[s];
@@ -82,24 +96,30 @@ void writeAssessment(const std::string& dir, const AssessmentResult& result,
     }
     plot.series.push_back(series);
     const auto f = result.finals(s);
+    const auto a = result.areas(s);
     for (std::size_t r = 0; r < f.size(); ++r) {
-      finals += fmt::format("{},{},{}\n", result.names[s], r, f[r]);
+      finals += fmt::format("{},{},{},{}\n", result.names[s], r, f[r], a[r]);
     }
   }
   std::string csv =
       "set,runs,mean_final,std,ci95,diverged,welch_t,welch_p,mann_whitney_u,mann_whitney_p,"
-      "cohen_d,a12\n";
+      "cohen_d,a12,mean_area,area_ci95,area_welch_p,area_mann_whitney_p\n";
   std::string md =
       "| feature set | runs | final (mean ± 95% CI) | vs first: Welch p | Mann-Whitney p | "
-      "Cohen's d | A12 |\n|---|---|---|---|---|---|---|\n";
+      "Cohen's d | A12 | area under curve | area: Welch p | area: Mann-Whitney p |\n"
+      "|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& row : summary) {
     const auto& c = row.vsBaseline;
-    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", row.name, row.final.n,
+    const auto& a = row.areaVsBaseline;
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", row.name, row.final.n,
                        row.final.mean, row.final.stddev, row.final.halfWidth, row.diverged,
-                       c.welchT, c.welchP, c.mannWhitneyU, c.mannWhitneyP, c.cohenD, c.a12);
-    md += fmt::format("| {} | {} | {:.4g} ± {:.3g} | {:.3g} | {:.3g} | {:.3g} | {:.3g} |\n",
-                      row.name, row.final.n, row.final.mean, row.final.halfWidth, c.welchP,
-                      c.mannWhitneyP, c.cohenD, c.a12);
+                       c.welchT, c.welchP, c.mannWhitneyU, c.mannWhitneyP, c.cohenD, c.a12,
+                       row.area.mean, row.area.halfWidth, a.welchP, a.mannWhitneyP);
+    md += fmt::format(
+        "| {} | {} | {:.4g} ± {:.3g} | {:.3g} | {:.3g} | {:.3g} | {:.3g} | {:.4g} ± {:.3g} | "
+        "{:.3g} | {:.3g} |\n",
+        row.name, row.final.n, row.final.mean, row.final.halfWidth, c.welchP, c.mannWhitneyP,
+        c.cohenD, c.a12, row.area.mean, row.area.halfWidth, a.welchP, a.mannWhitneyP);
   }
   writeFileAtomically(dir + "/curves.csv", curves);
   writeFileAtomically(dir + "/finals.csv", finals);

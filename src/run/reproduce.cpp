@@ -110,11 +110,13 @@ std::vector<std::vector<std::string>> summaryTable(const std::string& dir) {
     std::stringstream cells(line);
     std::string cell;
     while (std::getline(cells, cell, ',')) f.push_back(cell);
-    if (f.size() < 12) continue;
+    if (f.size() < 16) continue;
     const auto num = [](const std::string& s) { return std::stod(s); };
     rows.push_back({f[0], f[1], fmt::format("{:.4g} ± {:.3g}", num(f[2]), num(f[4])),
                     fmt::format("{:.3g}", num(f[7])), fmt::format("{:.3g}", num(f[9])),
-                    fmt::format("{:.3g}", num(f[10])), fmt::format("{:.3g}", num(f[11]))});
+                    fmt::format("{:.3g}", num(f[10])), fmt::format("{:.3g}", num(f[11])),
+                    fmt::format("{:.4g} ± {:.3g}", num(f[12]), num(f[13])),
+                    fmt::format("{:.3g}", num(f[14])), fmt::format("{:.3g}", num(f[15]))});
   }
   return rows;
 }

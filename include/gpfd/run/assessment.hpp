@@ -26,6 +26,9 @@ struct AssessmentResult {
 
   // The last row's mean return of every run of a set.
   std::vector<double> finals(std::size_t set) const;
+  // The mean over all rows of every run of a set: the area under the learning curve, which
+  // separates sets that learn at different speeds but end at the same ceiling.
+  std::vector<double> areas(std::size_t set) const;
 };
 
 // Run r of set s is seeded deriveSeed(seed, s, r): independent runs, identical for any number of
@@ -39,12 +42,14 @@ struct SetSummary {
   std::string name;
   Summary final;
   Comparison vsBaseline;
+  Summary area;
+  Comparison areaVsBaseline;
   int diverged = 0;
 };
 std::vector<SetSummary> summarizeAssessment(const AssessmentResult& result, std::size_t baseline);
 
 // Writes DIR/curves.csv (set,update,episodes,runs,mean,ci_low,ci_high), DIR/finals.csv
-// (set,run,final), DIR/summary.csv and DIR/summary.md (the statistics table), and the plot
+// (set,run,final,area), DIR/summary.csv and DIR/summary.md (the statistics table), and the plot
 // DIR/curves.{png,svg} (with its .dat and .gp). `title` heads the plot.
 void writeAssessment(const std::string& dir, const AssessmentResult& result,
                      const std::vector<SetSummary>& summary, const std::string& title,
