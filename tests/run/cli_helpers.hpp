@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -34,9 +35,13 @@ inline std::string readText(const std::string& path) {
   return s.str();
 }
 
+// Writes through a temporary file and a rename: tests run in parallel processes (ctest -j) and
+// may write the same file, and a reader must never see it half-written.
 inline std::string writeText(const std::string& name, const std::string& text) {
   const std::string path = ::testing::TempDir() + "/" + name;
-  std::ofstream(path) << text;
+  const std::string temporary = path + ".tmp" + std::to_string(::getpid());
+  std::ofstream(temporary) << text;
+  std::filesystem::rename(temporary, path);
   return path;
 }
 
