@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <csignal>
+#include <filesystem>
 #include <optional>
 #include <thread>
 
@@ -59,6 +60,14 @@ std::vector<std::string> overrides(const EvolveOptions& o) {
   return all;
 }
 
+// The default results directory: results/<name>, or results/<name>-2, -3, ... when taken, so
+// that running the same command again never collides with an earlier run.
+std::string freshResultsDir(const std::string& base) {
+  std::string dir = base;
+  for (int n = 2; std::filesystem::exists(dir); ++n) dir = base + "-" + std::to_string(n);
+  return dir;
+}
+
 int evolve(const EvolveOptions& o) {
   run::DiscoveryOptions options;
   options.outDir = o.resume.empty() ? o.out : o.resume;
@@ -92,7 +101,7 @@ int evolve(const EvolveOptions& o) {
     discovery = run::Discovery::resume(options, expected, o.generations);
   } else {
     const auto config = loadConfig(o.config, overrides(o));
-    if (options.outDir.empty()) options.outDir = "results/" + config.name;
+    if (options.outDir.empty()) options.outDir = freshResultsDir("results/" + config.name);
     discovery = run::Discovery::start(config, options);
   }
 
@@ -189,7 +198,8 @@ const CommandRegistration registration{
       cmd->add_option("--population", o->population, "Population size (overrides gp.population)");
       cmd->add_option("--generations", o->generations,
                       "Generations (overrides gp.generations; may extend a resumed run)");
-      cmd->add_option("--out", o->out, "Results directory (default results/<name>)");
+      cmd->add_option("--out", o->out,
+                      "Results directory (default results/<name>, or results/<name>-N when taken)");
       cmd->add_option("--resume", o->resume, "Continue the run in this results directory");
       cmd->add_option("--set", o->sets, "Override any config key: --set gp.elitism=0.2")
           ->allow_extra_args(false);

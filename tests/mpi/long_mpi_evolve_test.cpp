@@ -75,7 +75,8 @@ class MpiEvolve : public ::testing::Test {
  protected:
   // The threaded run every MPI run must reproduce.
   static void SetUpTestSuite() {
-    reference_ = freshDir("mpi-reference");
+    // Per process: ctest -j runs the test cases of this suite in parallel processes.
+    reference_ = freshDir("mpi-reference-" + std::to_string(::getpid()));
     const auto r = runGpfd("evolve " + tinyConfig() + " --quiet --threads 2 --out " + reference_);
     ASSERT_EQ(r.status, 0) << r.output;
   }
