@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <numbers>
 #include <stdexcept>
 
@@ -53,6 +54,33 @@ void FourierBasis::evaluate(const double* state, double* features) const {
     scaled[i] = std::isnan(v) ? 0.5 : std::clamp(v, 0.0, 1.0);
   }
   const std::size_t terms = outputDim();
+  if (coupling_ == Coupling::Full) {
+    // cos(pi c.x) = Re prod_i exp(i pi c_i x_i): the terms in the order of the constructor (the
+    // first variable's coefficient fastest) are the tensor product of the per-variable factors
+    // exp(i pi k x_i), k = 0..order, built one variable at a time: (order + 1)^d complex products
+    // instead of as many cosines.
+    const std::size_t base = terms == 1
+                                 ? 1
+                                 : static_cast<std::size_t>(std::llround(std::pow(
+                                       static_cast<double>(terms), 1.0 / static_cast<double>(d))));
+    thread_local std::vector<std::complex<double>> product, factor;  // No allocation per call.
+    product.resize(terms);
+    factor.resize(base);
+    std::size_t size = 1;
+    product[0] = 1.0;
+    for (std::size_t i = 0; i < d; ++i) {
+      for (std::size_t k = 0; k < base; ++k) {
+        factor[k] = std::polar(1.0, std::numbers::pi * static_cast<double>(k) * scaled[i]);
+      }
+      // Blocks for k = base-1 .. 1 first, so that block 0 (k = 0, factor 1) is read last.
+      for (std::size_t k = base; k-- > 1;) {
+        for (std::size_t j = 0; j < size; ++j) product[k * size + j] = product[j] * factor[k];
+      }
+      size *= base;
+    }
+    for (std::size_t t = 0; t < terms; ++t) features[t] = product[t].real();
+    return;
+  }
   for (std::size_t t = 0; t < terms; ++t) {
     const double* c = &coefficients_[t * d];
     double dot = 0.0;

@@ -18,8 +18,22 @@ TEST(FourierBasis, FullCouplingHasEveryCoefficientVector) {
   EXPECT_EQ(f[0], 1.0);  // c = (0, 0).
   for (int c1 = 0; c1 <= 3; ++c1) {
     for (int c0 = 0; c0 <= 3; ++c0) {
-      EXPECT_NEAR(f[c0 + 4 * c1], std::cos(std::numbers::pi * (c0 * 0.25 + c1 * 0.5)), 1e-15);
+      EXPECT_NEAR(f[c0 + 4 * c1], std::cos(std::numbers::pi * (c0 * 0.25 + c1 * 0.5)), 1e-12);
     }
+  }
+}
+
+TEST(FourierBasis, FullCouplingMatchesTheDefinitionInFourDimensions) {
+  const FourierBasis basis({{-1, 1}, {0, 1}, {-3, 3}, {0, 2}}, 3, FourierBasis::Coupling::Full);
+  const double state[] = {0.3, 0.9, -2.0, 1.7};
+  const double x[] = {0.65, 0.9, 1.0 / 6.0, 0.85};
+  std::vector<double> f(basis.outputDim());
+  basis.evaluate(state, f.data());
+  for (std::size_t t = 0; t < f.size(); ++t) {
+    double dot = 0.0;
+    std::size_t rest = t;
+    for (int i = 0; i < 4; ++i, rest /= 4) dot += static_cast<double>(rest % 4) * x[i];
+    EXPECT_NEAR(f[t], std::cos(std::numbers::pi * dot), 1e-12) << t;
   }
 }
 
