@@ -3,6 +3,7 @@
 
 #include <csignal>
 #include <cstdlib>
+#include <filesystem>
 
 #include "command.hpp"
 #include "config_loading.hpp"
@@ -30,9 +31,10 @@ struct ReproduceCli {
 
 // Runs this same program's `bench jit` (its AOT reference lives in the tool).
 void benchJit(const std::string& dir, bool quick) {
-  const std::string command = fmt::format("/proc/self/exe bench jit --out '{}' {} > '{}.log' 2>&1",
-                                          dir, quick ? "--calls 200000 --runs 3" : "", dir);
-  if (std::system(command.c_str()) != 0) {
+  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
+  const std::string command = fmt::format("'{}' bench jit --out '{}' {} > '{}.log' 2>&1", self, dir,
+                                          quick ? "--calls 200000 --runs 3" : "", dir);
+  if (std::system(command.c_str()) != 0 || !std::filesystem::exists(dir + "/jit.csv")) {
     throw InputError("gpfd bench jit failed; see " + dir + ".log", dir);
   }
 }

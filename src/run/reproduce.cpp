@@ -28,6 +28,10 @@ class Experiment {
   }
 
   const std::string& dir() const { return dir_; }
+  // Compute time of the experiment's steps, whether they ran now or in an earlier invocation:
+  // the GP runs' generation times and the assessments' recorded times.
+  double evolveSeconds() const { return evolveSeconds_; }
+  double assessSeconds() const { return assessSeconds_; }
 
   ExperimentConfig config(const std::string& base, std::vector<std::string> overrides = {}) const {
     overrides.push_back("seed=" + std::to_string(o_.seed));
@@ -69,7 +73,12 @@ class Experiment {
   void assess(const LearningTask& task, const std::vector<FeatureSet>& sets,
               const std::string& name, const std::string& title) {
     const std::string dir = dir_ + "/" + name;
-    if (fs::exists(dir + "/summary.csv")) return;
+    if (fs::exists(dir + "/summary.csv")) {
+      if (fs::exists(dir + "/seconds.txt"))
+        assessSeconds_ += std::stod(readFile(dir + "/seconds.txt"));
+      return;
+    }
+    const auto start = std::chrono::steady_clock::now();
     if (!o_.quiet) {
       fmt::print("  {}: {} feature sets x {} runs\n", name, sets.size(), task.config().assessRuns);
       std::fflush(stdout);
@@ -79,11 +88,17 @@ class Experiment {
     fs::create_directories(dir);
     writeAssessment(dir, result, summarizeAssessment(result, 0), title,
                     task.config().learner == "lpi" ? "lambda-PI iteration" : "policy update");
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    writeFileAtomically(dir + "/seconds.txt", fmt::format("{:.1f}\n", seconds));
+    assessSeconds_ += seconds;
   }
 
  private:
   const ReproduceOptions& o_;
   std::string dir_;
+  double evolveSeconds_ = 0.0;
+  double assessSeconds_ = 0.0;
 };
 
 std::shared_ptr<const jit::FeatureMap> fourier(const LearningTask& task, int order) {
@@ -99,9 +114,9 @@ std::string fourierName(const FeatureSet& set) {
 
 // The summary table of an assessment, for the report.
 std::vector<std::vector<std::string>> summaryTable(const std::string& dir) {
-  std::vector<std::vector<std::string>> rows{{"feature set", "runs", "final (mean ± 95% CI)",
-                                              "vs original: Welch p", "Mann-Whitney p", "Cohen's d",
-                                              "A12"}};
+  std::vector<std::vector<std::string>> rows{
+      {"feature set", "runs", "final (mean ± 95% CI)", "vs original: Welch p", "Mann-Whitney p",
+       "Cohen's d", "A12", "area under curve", "area: Welch p", "area: Mann-Whitney p"}};
   std::istringstream in(readFile(dir + "/summary.csv"));
   std::string line;
   std::getline(in, line);  // Header.
@@ -267,15 +282,13 @@ void reproduce(const std::vector<std::string>& figures, const ReproduceOptions& 
       fmt::print("{}:\n", figure);
       std::fflush(stdout);
     }
-    const auto start = std::chrono::steady_clock::now();
     Experiment e(o, figure);
     io::Report part = runFigure(figure, e, o);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    part.paragraph(
-        fmt::format("Wall time of this experiment: {:.0f} s ({} scale, seed {}, "
-                    "gpfd {} {}).",
-                    seconds, o.paperScale ? "paper" : "quick", o.seed, o.version, o.revision));
+    part.paragraph(fmt::format(
+        "Compute time of this experiment: GP runs {:.0f} s, assessments {:.0f} s ({} scale, seed "
+        "{}, gpfd {} {}, {} threads).",
+        e.evolveSeconds(), e.assessSeconds(), o.paperScale ? "paper" : "quick", o.seed, o.version,
+        o.revision, o.threads > 0 ? std::to_string(o.threads) : "all"));
     writeFileAtomically(e.dir() + "/section.json", part.json());
   }
 
