@@ -19,27 +19,8 @@ namespace gpfd::testing {
 namespace {
 
 #ifdef GPFD_MPIEXEC
-const char* kTinyConfig = R"(name = "tiny-mpi"
-seed = 5
-[env]
-name = "cartpole"
-params = { max_steps = 200 }
-[learner]
-name = "pg"
-params = { updates = 4, episodes = 5 }
-[fitness]
-trials = 2
-size_penalty = 0.001
-[genome]
-max_features = 4
-max_depth = 4
-max_size = 15
-[gp]
-population = 12
-generations = 6
-)";
 
-std::string tinyConfig() { return writeText("tiny-mpi.toml", kTinyConfig); }
+std::string tinyConfig() { return tinyEvolveConfig("tiny-mpi", 5); }
 
 // Runs `mpiexec -n <ranks> gpfd <args>` with extra environment assignments; output merged.
 CommandResult runMpi(int ranks, const std::string& args, const std::string& env = "") {

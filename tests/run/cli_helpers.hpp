@@ -60,4 +60,27 @@ inline std::string withoutSeconds(const std::string& csv) {
   return out.str();
 }
 
+// A tiny `gpfd evolve` config (cart-pole, 12 x 6, two 4-update trials; well under a second),
+// written as <name>.toml; returns its path.
+inline std::string tinyEvolveConfig(const std::string& name, int seed) {
+  return writeText(name + ".toml", "name = \"" + name + "\"\nseed = " + std::to_string(seed) + R"(
+[env]
+name = "cartpole"
+params = { max_steps = 200 }
+[learner]
+name = "pg"
+params = { updates = 4, episodes = 5 }
+[fitness]
+trials = 2
+size_penalty = 0.001
+[genome]
+max_features = 4
+max_depth = 4
+max_size = 15
+[gp]
+population = 12
+generations = 6
+)");
+}
+
 }  // namespace gpfd::testing

@@ -12,27 +12,7 @@
 namespace gpfd::testing {
 namespace {
 
-const char* kTinyConfig = R"(name = "tiny"
-seed = 3
-[env]
-name = "cartpole"
-params = { max_steps = 200 }
-[learner]
-name = "pg"
-params = { updates = 4, episodes = 5 }
-[fitness]
-trials = 2
-size_penalty = 0.001
-[genome]
-max_features = 4
-max_depth = 4
-max_size = 15
-[gp]
-population = 12
-generations = 6
-)";
-
-std::string tinyConfig() { return writeText("tiny.toml", kTinyConfig); }
+std::string tinyConfig() { return tinyEvolveConfig("tiny", 3); }
 
 std::string fingerprint(const std::string& dir) {
   return withoutSeconds(readText(dir + "/generations.csv")) + readText(dir + "/best.features");
