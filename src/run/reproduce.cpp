@@ -60,6 +60,7 @@ class Experiment {
         o_.stop ? *o_.stop : never);
     if (!run->finished())
       throw InputError("interrupted; run the same command again to continue", dir);
+    for (const auto& r : run->history()) evolveSeconds_ += r.seconds;
     return run->history();
   }
 
