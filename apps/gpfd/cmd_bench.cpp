@@ -12,8 +12,10 @@
 #include <string>
 
 #include "command.hpp"
+#include "gpfd/io/gnuplot.hpp"
 #include "gpfd/jit/aot_reference.hpp"
 #include "gpfd/jit/figure3.hpp"
+#include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::app {
@@ -49,17 +51,6 @@ void parseDepths(const std::string& text, jit::Figure3Options& options) {
   options.maxDepth = hi;
 }
 
-// Writes via a temporary file and a rename, so a failed run leaves no half-written output.
-void writeFile(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream file(tmp);
-    file << text;
-    if (!file) throw InputError("cannot write", tmp.string());
-  }
-  fs::rename(tmp, path);
-}
-
 std::string number(double x) {
   if (std::isnan(x)) return "";
   char buffer[32];
@@ -92,51 +83,41 @@ double ns(const Table& t, BenchSet set, int depth, const std::string& method) {
   return m == it->second.end() ? NAN : m->second.nsPerCall;
 }
 
+// jit.png / jit.svg: speed-ups over the tree-walking interpreter per depth, solid lines for
+// {+, -, *, /}, dashed with sin, cos, sqrt, and the paper's reported point.
 void plot(const fs::path& dir, const Table& table, const jit::Figure3Options& o) {
-  std::string data =
-      "# depth, speed-up over the tree interpreter: interp jit aot batch "
-      "(arithmetic), then the same (unary)\n";
-  for (int d = o.minDepth; d <= o.maxDepth; ++d) {
-    data += std::to_string(d);
-    for (BenchSet set : {BenchSet::Arithmetic, BenchSet::Unary}) {
-      const double tree = ns(table, set, d, "tree");
-      for (const char* m : {"interp", "jit", "aot", "batch"}) {
-        const double x = tree / ns(table, set, d, m);
-        data.push_back(' ');
-        data.append(std::isnan(x) ? std::string("NaN") : number(x));
+  io::LinePlot figure{"Speed-up over the tree-walking interpreter (Figure 3 of Girgin and Preux)",
+                      "depth of the complete tree",
+                      "speed-up",
+                      {},
+                      true,
+                      "top left"};
+  for (BenchSet set : {BenchSet::Arithmetic, BenchSet::Unary}) {
+    int colour = 0;
+    for (const char* m : {"jit", "aot", "batch", "interp"}) {
+      io::Series series;
+      series.colour = ++colour;  // The same colour for a method in both sets.
+      series.title =
+          std::string(m) + (set == BenchSet::Arithmetic ? " {+,-,*,/}" : " +sin,cos,sqrt");
+      series.dashed = set == BenchSet::Unary;
+      series.markers = true;
+      for (int d = o.minDepth; d <= o.maxDepth; ++d) {
+        const double x = ns(table, set, d, "tree") / ns(table, set, d, m);
+        if (std::isnan(x)) continue;
+        series.x.push_back(d);
+        series.y.push_back(x);
       }
+      if (!series.x.empty()) figure.series.push_back(series);
     }
-    data += "\n";
   }
-  writeFile(dir / "jit_speedup.dat", data);
-  std::string script;
-  for (const auto& [terminal, file] :
-       {std::pair<std::string, std::string>{"pngcairo size 900,600", "jit.png"},
-        {"svg size 900,600", "jit.svg"}}) {
-    script += "set terminal " + terminal + "\nset output '" + (dir / file).string() + "'\n";
-    script +=
-        "set title 'Speed-up over the tree-walking interpreter (Figure 3 of Girgin & Preux)'\n"
-        "set xlabel 'depth of the complete tree'\nset ylabel 'speed-up'\nset logscale y\n"
-        "set key top left\nset grid\nset datafile missing 'NaN'\n"
-        "plot '" +
-        (dir / "jit_speedup.dat").string() +
-        "' "
-        "u 1:3 w lp lw 2 lc 1 t 'jit {+,-,*,/}', '' u 1:4 w lp lw 2 lc 2 t 'aot {+,-,*,/}', "
-        "'' u 1:5 w lp lw 2 lc 3 t 'batch {+,-,*,/}', '' u 1:2 w lp lw 2 lc 4 t 'interp "
-        "{+,-,*,/}', "
-        "'' u 1:7 w lp dt 2 lc 1 t 'jit +sin,cos,sqrt', '' u 1:8 w lp dt 2 lc 2 t 'aot "
-        "+sin,cos,sqrt', "
-        "'' u 1:9 w lp dt 2 lc 3 t 'batch +sin,cos,sqrt', '' u 1:6 w lp dt 2 lc 4 t 'interp "
-        "+sin,cos,sqrt', "
-        "'-' w p pt 7 ps 2 lc 7 t 'paper, GNU Lightning (about 75x at depth 8)'\n8 75\ne\n"
-        "unset output\n";
-  }
-  writeFile(dir / "jit.gp", script);
-  const std::string command = "gnuplot '" + (dir / "jit.gp").string() + "'";
-  if (std::system(command.c_str()) != 0) {
-    std::fprintf(stderr, "warning: gnuplot failed; the plot script is %s\n",
-                 (dir / "jit.gp").string().c_str());
-  }
+  io::Series paper;
+  paper.title = "paper, GNU Lightning (about 75x at depth 8)";
+  paper.x = {8};
+  paper.y = {75};
+  paper.markers = true;
+  paper.colour = 7;
+  figure.series.push_back(paper);
+  io::plotLines((dir / "jit").string(), figure);
 }
 
 std::string summary(const Table& t, const jit::Figure3Options& o, const jit::MemoryCheck& mem) {
@@ -203,13 +184,13 @@ int runBenchJit(const BenchJitArgs& args) {
   }
   const auto rows = jit::runFigure3(options, aot);
   const Table table = tabulate(rows);
-  writeFile(dir / "jit.csv", csv(rows, BenchSet::Arithmetic));
-  writeFile(dir / "jit_unary.csv", csv(rows, BenchSet::Unary));
+  writeFileAtomically((dir / "jit.csv").string(), csv(rows, BenchSet::Arithmetic));
+  writeFileAtomically((dir / "jit_unary.csv").string(), csv(rows, BenchSet::Unary));
   const jit::MemoryCheck memory =
       args.memoryCycles > 0 ? jit::measureCompileReleaseMemory(args.memoryCycles, args.seed)
                             : jit::MemoryCheck{};
   const std::string text = summary(table, options, memory);
-  writeFile(dir / "jit_summary.txt", text);
+  writeFileAtomically((dir / "jit_summary.txt").string(), text);
   plot(dir, table, options);
   std::fputs(text.c_str(), stdout);
   return 0;

@@ -40,22 +40,23 @@ bool plotLines(const std::string& base, const LinePlot& plot) {
   writeFileAtomically(base + ".dat", data);
 
   const std::string dat = std::filesystem::path(base + ".dat").filename().string();
-  std::string body =
-      fmt::format("set title {}\nset xlabel {}\nset ylabel {}\nset key bottom right\nset grid\n{}",
-                  quoted(plot.title), quoted(plot.xlabel), quoted(plot.ylabel),
-                  plot.logY ? "set logscale y\n" : "");
+  std::string body = fmt::format(
+      "set title {}\nset xlabel {}\nset ylabel {}\nset key {}\nset grid\n{}", quoted(plot.title),
+      quoted(plot.xlabel), quoted(plot.ylabel), plot.key, plot.logY ? "set logscale y\n" : "");
   std::string bands, lines;
   for (std::size_t i = 0; i < plot.series.size(); ++i) {
     const auto& s = plot.series[i];
-    const int colour = static_cast<int>(i) + 1;
+    const int colour = s.colour > 0 ? s.colour : static_cast<int>(i) + 1;
     if (!s.low.empty()) {
       bands += fmt::format(
           "{}{} index {} using 1:3:4 with filledcurves lc {} fs transparent solid "
           "0.2 notitle",
           bands.empty() ? "" : ", ", quoted(dat), i, colour);
     }
-    lines += fmt::format("{}{} index {} using 1:2 with lines lw 2 lc {} title {}",
-                         lines.empty() ? "" : ", ", quoted(dat), i, colour, quoted(s.title));
+    lines += fmt::format("{}{} index {} using 1:2 with {} lw 2 lc {}{} title {}",
+                         lines.empty() ? "" : ", ", quoted(dat), i,
+                         s.markers ? "linespoints pt 7" : "lines", colour, s.dashed ? " dt 2" : "",
+                         quoted(s.title));
   }
   const std::string plotLine = "plot " + (bands.empty() ? lines : bands + ", " + lines) + "\n";
   const std::string png = std::filesystem::path(base + ".png").filename().string();

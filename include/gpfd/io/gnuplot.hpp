@@ -11,12 +11,16 @@ struct Series {
   std::string title;
   std::vector<double> x, y;
   std::vector<double> low, high;  // Optional band (same size as y), e.g. a 95% interval.
+  bool dashed = false;            // A dashed line (a second family of series).
+  bool markers = false;           // Points on the line (a single-point series shows as a dot).
+  int colour = 0;                 // gnuplot line colour index; 0: by position.
 };
 
 struct LinePlot {
   std::string title, xlabel, ylabel;
   std::vector<Series> series;
   bool logY = false;
+  std::string key = "bottom right";  // Where gnuplot puts the legend.
 };
 
 // Writes BASE.dat, BASE.gp, and renders BASE.png and BASE.svg (BASE is a path without
