@@ -7,9 +7,7 @@
 #include "config_loading.hpp"
 #include "gpfd/env/environment.hpp"
 #include "gpfd/expr/features_file.hpp"
-#include "gpfd/rl/fourier_basis.hpp"
 #include "gpfd/run/assessment.hpp"
-#include "gpfd/run/state_ranges.hpp"
 #include "gpfd/util/error.hpp"
 #include "param_routing.hpp"
 
@@ -83,13 +81,7 @@ int assess(const AssessOptions& o) {
       sets.push_back({name + "+original", run::genomeFeatureMap(file.genome, dim, true)});
     }
   }
-  if (o.fourier > 0) {
-    auto basis = rl::FourierBasis::automatic(run::typicalStateRanges(config.env, task.stateNames()),
-                                             o.fourier);
-    const bool full = basis.coupling() == rl::FourierBasis::Coupling::Full;
-    sets.push_back({fmt::format("fourier-{}{}", o.fourier, full ? "" : "-independent"),
-                    std::make_shared<const rl::FourierBasis>(std::move(basis))});
-  }
+  if (o.fourier > 0) sets.push_back(run::fourierFeatureSet(task, o.fourier));
   if (sets.empty())
     throw InputError("nothing to assess: give --features FILE... or --raw", "gpfd assess");
   const std::string out = o.out.empty() ? "results/assess-" + config.env : o.out;

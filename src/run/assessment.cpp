@@ -7,9 +7,19 @@
 #include <cmath>
 
 #include "gpfd/io/gnuplot.hpp"
+#include "gpfd/rl/fourier_basis.hpp"
+#include "gpfd/run/state_ranges.hpp"
 #include "gpfd/util/atomic_file.hpp"
 
 namespace gpfd::run {
+
+FeatureSet fourierFeatureSet(const LearningTask& task, int order) {
+  auto basis =
+      rl::FourierBasis::automatic(typicalStateRanges(task.config().env, task.stateNames()), order);
+  const bool full = basis.coupling() == rl::FourierBasis::Coupling::Full;
+  return {fmt::format("fourier-{}{}", order, full ? "" : "-independent"),
+          std::make_shared<const rl::FourierBasis>(std::move(basis))};
+}
 
 std::vector<double> AssessmentResult::finals(std::size_t set) const {
   std::vector<double> out;

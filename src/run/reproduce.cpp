@@ -10,10 +10,8 @@
 #include "gpfd/expr/parse.hpp"
 #include "gpfd/io/gnuplot.hpp"
 #include "gpfd/io/report.hpp"
-#include "gpfd/rl/fourier_basis.hpp"
 #include "gpfd/run/assessment.hpp"
 #include "gpfd/run/discovery.hpp"
-#include "gpfd/run/state_ranges.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
 
@@ -102,17 +100,6 @@ class Experiment {
   double assessSeconds_ = 0.0;
 };
 
-std::shared_ptr<const jit::FeatureMap> fourier(const LearningTask& task, int order) {
-  return std::make_shared<const rl::FourierBasis>(
-      rl::FourierBasis::automatic(typicalStateRanges(task.config().env, task.stateNames()), order));
-}
-
-std::string fourierName(const FeatureSet& set) {
-  const auto* basis = dynamic_cast<const rl::FourierBasis*>(set.map.get());
-  return basis->coupling() == rl::FourierBasis::Coupling::Full ? "fourier-3"
-                                                               : "fourier-3-independent";
-}
-
 // The summary table of an assessment, for the report.
 std::vector<std::vector<std::string>> summaryTable(const std::string& dir) {
   std::vector<std::vector<std::string>> rows{
@@ -181,11 +168,7 @@ io::Report benchmark(Experiment& e, const ExperimentConfig& config, const std::s
   sets.insert(sets.end(), extraSets.begin(), extraSets.end());
   sets.push_back(
       {"discovered", genomeFeatureMap(features.genome, task.stateDim(), config.withOriginal)});
-  if (withFourier) {
-    FeatureSet f{"", fourier(task, 3)};
-    f.name = fourierName(f);
-    sets.push_back(f);
-  }
+  if (withFourier) sets.push_back(fourierFeatureSet(task, 3));
   const std::string assessName = "assess-" + config.name;
   e.assess(task, sets, assessName, config.env + " (" + config.name + ")");
   fitnessPlot(e.dir() + "/fitness-" + config.name,

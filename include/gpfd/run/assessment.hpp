@@ -20,6 +20,10 @@ struct FeatureSet {
   std::shared_ptr<const jit::FeatureMap> map;
 };
 
+// The Fourier basis of `order` over the task's state (typical state ranges; full coupling up to
+// 1024 terms, else independent), named "fourier-ORDER" or "fourier-ORDER-independent".
+FeatureSet fourierFeatureSet(const LearningTask& task, int order);
+
 struct AssessmentResult {
   std::vector<std::string> names;
   std::vector<std::vector<rl::LearningCurve>> curves;  // [set][run]
