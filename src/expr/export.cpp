@@ -91,6 +91,7 @@ constexpr const char* kCPreamble =
    without -ffast-math, and the values are bit-identical to gpfd's. */
 #include <float.h>
 #include <math.h>
+#include <string.h>
 
 static double gpfd_min(double a, double b) { return a < b ? a : b; }
 static double gpfd_max(double a, double b) { return a > b ? a : b; }
@@ -101,8 +102,42 @@ static double gpfd_sub(double a, double b) { return gpfd_sat(a - b); }
 static double gpfd_mul(double a, double b) { return gpfd_sat(a * b); }
 static double gpfd_div(double a, double b) { return fabs(b) > 1e-10 ? gpfd_sat(a / b) : 1.0; }
 static double gpfd_absdiff(double a, double b) { return gpfd_sat(fabs(a - b)); }
-static double gpfd_sin(double a) { return sin(a); }
-static double gpfd_cos(double a) { return cos(a); }
+/* gpfd's sin and cos (gpfd include/gpfd/expr/trig.hpp): Cody-Waite reduction by pi/2 in three
+   parts and fdlibm's kernel polynomials; the C library only for |a| > 1e6. */
+static double gpfd_trig(double a, unsigned offset) {
+  double shifted, k, r1, w, r2, tail, r, y, z, v, p, value;
+  unsigned long long bits;
+  unsigned q;
+  if (fabs(a) < 0x1p-27) return offset == 0 ? a : 1.0;
+  if (!(fabs(a) <= 1.0e6)) return offset == 0 ? sin(a) : cos(a);
+  shifted = a * 6.36619772367581382433e-01 + 0x1.8p52;
+  memcpy(&bits, &shifted, sizeof bits);
+  q = (unsigned)((bits + offset) & 3u);
+  k = (shifted - 0x1.8p52) + 0.0;
+  r1 = a - k * 1.57079632673412561417e+00;
+  w = k * 6.07710050630396597660e-11;
+  r2 = r1 - w;
+  tail = ((r1 - r2) - w) - k * 2.02226624879595063154e-21;
+  r = r2 + tail;
+  y = (r2 - r) + tail;
+  z = r * r;
+  if (q & 1u) {
+    p = z * (4.16666666666666019037e-02 + z * (-1.38888888888741095749e-03 +
+        z * (2.48015872894767294178e-05 + z * (-2.75573143513906633035e-07 +
+        z * (2.08757232129817482790e-09 + z * -1.13596475577881948265e-11)))));
+    w = 1.0 - 0.5 * z;
+    value = w + (((1.0 - w) - 0.5 * z) + (z * p - r * y));
+  } else {
+    v = z * r;
+    p = 8.33333333332248946124e-03 + z * (-1.98412698298579493134e-04 +
+        z * (2.75573137070700676789e-06 + z * (-2.50507602534068634195e-08 +
+        z * 1.58969099521155010221e-10)));
+    value = r - ((z * (0.5 * y - v * p) - y) - v * -1.66666666666666324348e-01);
+  }
+  return (q & 2u) ? -value : value;
+}
+static double gpfd_sin(double a) { return gpfd_trig(a, 0); }
+static double gpfd_cos(double a) { return gpfd_trig(a, 1); }
 static double gpfd_tanh(double a) { return tanh(a); }
 static double gpfd_sqrt(double a) { return sqrt(fabs(a)); }
 static double gpfd_neg(double a) { return -a; }
@@ -115,8 +150,9 @@ static double gpfd_square(double a) { return gpfd_sat(a * a); }
 constexpr const char* kPythonPreamble =
     R"("""Features discovered by gpfd, with gpfd's protected semantics (docs/expressions.md):
 every value is finite; overflow saturates to +-DBL_MAX; a / b = 1 when |b| <= 1e-10; sqrt and log
-take |a|; log is 0 near 0; inputs: NaN -> 0, +-inf -> +-DBL_MAX. Arithmetic is bit-identical to
-gpfd's; sin, cos, tanh, exp and log are NumPy's and may differ from C's libm in the last bit."""
+take |a|; log is 0 near 0; inputs: NaN -> 0, +-inf -> +-DBL_MAX. Arithmetic, sin and cos are
+bit-identical to gpfd's (for |a| <= 1e6); tanh, exp and log are NumPy's and may differ from C's
+libm in the last bit."""
 import numpy as np
 
 _MAX = np.finfo(np.float64).max
@@ -137,8 +173,6 @@ def gpfd_mul(a, b): return _sat(np.multiply(a, b))
 def gpfd_min(a, b): return np.where(np.less(a, b), a, b)
 def gpfd_max(a, b): return np.where(np.greater(a, b), a, b)
 def gpfd_absdiff(a, b): return _sat(np.abs(np.subtract(a, b)))
-def gpfd_sin(a): return np.sin(a)
-def gpfd_cos(a): return np.cos(a)
 def gpfd_tanh(a): return np.tanh(a)
 def gpfd_sqrt(a): return np.sqrt(np.abs(a))
 def gpfd_neg(a): return np.negative(a)
@@ -159,6 +193,40 @@ def gpfd_exp(a):
 def gpfd_log(a):
     with np.errstate(divide="ignore"):
         return np.where(np.abs(a) > 1e-10, np.log(np.abs(a)), 0.0)
+
+
+def _trig(a, offset):
+    """gpfd's sin (offset 0) and cos (offset 1), include/gpfd/expr/trig.hpp, bit for bit."""
+    a = np.asarray(a, dtype=np.float64)
+    shifted = a * 6.36619772367581382433e-01 + 6755399441055744.0
+    q = (shifted.view(np.uint64) + np.uint64(offset)) & np.uint64(3)
+    k = (shifted - 6755399441055744.0) + 0.0
+    r1 = a - k * 1.57079632673412561417e+00
+    w = k * 6.07710050630396597660e-11
+    r2 = r1 - w
+    tail = ((r1 - r2) - w) - k * 2.02226624879595063154e-21
+    r = r2 + tail
+    y = (r2 - r) + tail
+    z = r * r
+    v = z * r
+    p = 8.33333333332248946124e-03 + z * (-1.98412698298579493134e-04 + z * (
+        2.75573137070700676789e-06 + z * (-2.50507602534068634195e-08 + z * 1.58969099521155010221e-10)))
+    sin_r = r - ((z * (0.5 * y - v * p) - y) - v * -1.66666666666666324348e-01)
+    c = z * (4.16666666666666019037e-02 + z * (-1.38888888888741095749e-03 + z * (
+        2.48015872894767294178e-05 + z * (-2.75573143513906633035e-07 + z * (
+            2.08757232129817482790e-09 + z * -1.13596475577881948265e-11)))))
+    cw = 1.0 - 0.5 * z
+    cos_r = cw + (((1.0 - cw) - 0.5 * z) + (z * c - r * y))
+    value = np.where((q & np.uint64(1)) == 1, cos_r, sin_r)
+    value = np.where((q & np.uint64(2)) == 2, -value, value)
+    large = ~(np.abs(a) <= 1.0e6)
+    if np.any(large):
+        value = np.where(large, np.sin(a) if offset == 0 else np.cos(a), value)
+    return np.where(np.abs(a) < 2.0 ** -27, a if offset == 0 else 1.0, value)
+
+
+def gpfd_sin(a): return _trig(a, 0)
+def gpfd_cos(a): return _trig(a, 1)
 
 )";
 

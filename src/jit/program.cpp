@@ -292,10 +292,10 @@ void run(const Program& program, const double* state, double* features, double* 
         v[i] = p::absdiff(v[in.a], v[in.b]);
         break;
       case Op::Sin:
-        v[i] = std::sin(v[in.a]);
+        v[i] = expr::trig::sin(v[in.a]);
         break;
       case Op::Cos:
-        v[i] = std::cos(v[in.a]);
+        v[i] = expr::trig::cos(v[in.a]);
         break;
       case Op::Sqrt:
         v[i] = p::sqrt(v[in.a]);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "gpfd/expr/ops.hpp"
+#include "gpfd/jit/trig_avx2.hpp"
 
 #if GPFD_HAVE_JIT
 #include <asmjit/x86.h>
@@ -21,17 +22,17 @@ using expr::Op;
 namespace x86 = asmjit::x86;
 using InstId = asmjit::InstId;
 
-// The libm-based operators, called by generated code. Each applies exactly the function the
-// interpreter applies, so results agree bit for bit.
+// The operators that generated code calls. Each applies exactly the function the interpreter
+// applies, so results agree bit for bit (the 4-lane sin and cos are expr::trig's, vectorised).
 using ScalarHelper = double (*)(double);
 using LaneHelper = void (*)(double*);  // Applies the operator to 4 doubles in place.
 
 ScalarHelper scalarHelper(Op op) {
   switch (op) {
     case Op::Sin:
-      return [](double x) { return std::sin(x); };
+      return [](double x) { return expr::trig::sin(x); };
     case Op::Cos:
-      return [](double x) { return std::cos(x); };
+      return [](double x) { return expr::trig::cos(x); };
     case Op::Exp:
       return [](double x) { return expr::protect::exp(x); };
     case Op::Log:
@@ -46,13 +47,9 @@ ScalarHelper scalarHelper(Op op) {
 LaneHelper laneHelper(Op op) {
   switch (op) {
     case Op::Sin:
-      return [](double* x) {
-        for (int j = 0; j < 4; ++j) x[j] = std::sin(x[j]);
-      };
+      return sin4Avx2;
     case Op::Cos:
-      return [](double* x) {
-        for (int j = 0; j < 4; ++j) x[j] = std::cos(x[j]);
-      };
+      return cos4Avx2;
     case Op::Exp:
       return [](double* x) {
         for (int j = 0; j < 4; ++j) x[j] = expr::protect::exp(x[j]);
@@ -628,10 +625,33 @@ class Emitter {
   int slotCount_ = 0;
 };
 
+// Whether more values than there are registers may be live at once (constants included: a
+// constant loaded into a register stays there until its last use), i.e. whether the code may
+// spill and so needs a frame. Deciding this up front saves emitting large programs twice.
+bool mayNeedSpills(const Program& program) {
+  const std::size_t n = program.code.size();
+  std::vector<std::uint32_t> lastUse(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Instr& in = program.code[i];
+    const int ar = expr::arity(in.op);
+    if (ar >= 1) lastUse[in.a] = static_cast<std::uint32_t>(i);
+    if (ar == 2) lastUse[in.b] = static_cast<std::uint32_t>(i);
+  }
+  std::vector<int> dying(n, 0);  // Values whose last use is instruction i.
+  int live = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    live -= dying[i];
+    if (lastUse[i] <= i) continue;             // Never held past instruction i.
+    if (++live > kValueRegs - 1) return true;  // Keep one register for the result.
+    ++dying[lastUse[i]];
+  }
+  return false;
+}
+
 NativeCode compile(const Program& program, bool batch) {
   if (batch && !hostHasAvx2()) throw CompileError("the CPU has no AVX2");
   Runtime& rt = runtime();
-  bool frame = batch || program.hasCalls();
+  bool frame = batch || program.hasCalls() || mayNeedSpills(program);
   for (;;) {
     asmjit::CodeHolder code;
     RecordingErrorHandler errors;

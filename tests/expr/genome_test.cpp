@@ -23,7 +23,7 @@ TEST(Genome, LinearEncodingWithBoundaries) {
   const double state[] = {1.0, 0.5};
   double out[2];
   evaluate(g, state, out);
-  EXPECT_EQ(out[0], 1.0 + std::sin(0.5));
+  EXPECT_EQ(out[0], 1.0 + gpfd::expr::trig::sin(0.5));
   EXPECT_EQ(out[1], 2.0);
 }
 

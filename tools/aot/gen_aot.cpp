@@ -33,9 +33,9 @@ std::string call(Op op, const std::string& a, const std::string& b) {
     case Op::Div:
       return "p::div(" + a + ", " + b + ")";
     case Op::Sin:
-      return "std::sin(" + a + ")";
+      return "gpfd::expr::trig::sin(" + a + ")";
     case Op::Cos:
-      return "std::cos(" + a + ")";
+      return "gpfd::expr::trig::cos(" + a + ")";
     case Op::Sqrt:
       return "p::sqrt(" + a + ")";
     default:

@@ -18,6 +18,8 @@
 #include <optional>
 #include <string_view>
 
+#include "gpfd/expr/trig.hpp"
+
 namespace gpfd::expr {
 
 enum class Op : std::uint8_t {
@@ -99,9 +101,9 @@ inline double square(double a) { return saturate(a * a); }
 inline double apply(Op op, double a) {
   switch (op) {
     case Op::Sin:
-      return std::sin(a);
+      return trig::sin(a);
     case Op::Cos:
-      return std::cos(a);
+      return trig::cos(a);
     case Op::Sqrt:
       return protect::sqrt(a);
     case Op::Neg:
