@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <list>
 #include <numeric>
 #include <optional>
@@ -42,6 +43,9 @@ struct Outgoing {
   std::vector<char> bytes;
   MPI_Request request = MPI_REQUEST_NULL;
 };
+
+// Tasks a worker may hold beyond its threads.
+constexpr std::size_t kQueued = 2;
 
 void completeFinished(std::list<Outgoing>& sending) {
   for (auto it = sending.begin(); it != sending.end();) {
@@ -116,11 +120,13 @@ std::vector<double> MpiEvaluator::evaluate(const std::vector<const expr::Genome*
     ++inFlight;
   };
 
-  // A worker may hold one task beyond its threads (queued locally), so that it never waits for
-  // the round trip to the master between tasks; only while more tasks remain than there are
-  // workers, so that the end of a batch still spreads over all of them.
+  // A worker may hold up to kQueued tasks beyond its threads (queued locally), so that it never
+  // waits for the round trip to the master between tasks, even after short evaluations; one
+  // more only while more than that many tasks per worker remain, so that the end of a batch
+  // still spreads over all of them.
   const auto wantsAnother = [&](int worker) {
-    const int extra = n - next > credit_.size() ? 1 : 0;
+    const std::size_t perWorker = (n - next) / credit_.size();
+    const int extra = static_cast<int>(std::min<std::size_t>(perWorker, kQueued));
     return next < n && credit_[static_cast<std::size_t>(worker - 1)] + extra > 0;
   };
   // Deal one task to each worker in turn while they want one, so that a short batch spreads
