@@ -81,6 +81,11 @@ class Builder {
         if (a == b) return constant(1.0);  // x / x = 1, also when |x| is near zero.
         if (yc && !(std::fabs(y.value) > expr::protect::kNearZero)) return constant(1.0);
         if (yc && y.value == 1.0) return a;
+        if (yc && isPowerOfTwo(y.value) && isPowerOfTwo(1.0 / y.value)) {
+          // x / 2^k and x * 2^-k are the same real number, so they round to the same double:
+          // a multiplication instead of a division, exactly.
+          return binary(Op::Mul, a, constant(1.0 / y.value));
+        }
         break;
       case Op::Min:
       case Op::Max:
@@ -101,6 +106,12 @@ class Builder {
   std::vector<Instr>& code() { return code_; }
 
  private:
+  // +-2^k, finite and nonzero (subnormal powers of two included).
+  static bool isPowerOfTwo(double c) {
+    int exponent = 0;
+    return std::isfinite(c) && std::fabs(std::frexp(c, &exponent)) == 0.5;
+  }
+
   static constexpr std::uint32_t kEmpty = 0xffffffffu;
 
   static bool same(const Instr& p, const Instr& q) {

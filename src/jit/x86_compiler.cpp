@@ -420,9 +420,10 @@ class Emitter {
   }
 
   // The destination of an instruction whose first operand is in register ra: ra itself when the
-  // operand dies here, else a fresh register.
+  // operand dies here or is a constant (reloaded from the pool when needed again, so constants
+  // never hold registers that live values need), else a fresh register.
   int destination(std::uint32_t v, std::uint32_t a, int ra, unsigned avoid, std::size_t at) {
-    if (lastUse_[a] == at) {
+    if (lastUse_[a] == at || isConst(a)) {
       release(a);
       if (values_[a].slot >= 0) {
         freeSlots_.push_back(values_[a].slot);
@@ -468,8 +469,10 @@ class Emitter {
     std::uint32_t a = in.a, b = in.b;
     // For a commutative operator whose first operand lives on but second dies, swap them so the
     // result can take the dying operand's register.
+    // A constant first operand of a commutative operator becomes the memory operand.
     const bool commutative = in.op == Op::Add || in.op == Op::Mul || in.op == Op::AbsDiff;
-    if (commutative && lastUse_[a] != v && lastUse_[b] == v && values_[b].reg >= 0) {
+    if (commutative && ((lastUse_[a] != v && lastUse_[b] == v && values_[b].reg >= 0) ||
+                        (isConst(a) && !isConst(b)))) {
       std::swap(a, b);
     }
     const int ra = inRegister(a, maskOf(b));
@@ -493,7 +496,8 @@ class Emitter {
         break;
       case Op::Mul:
         op2(I::kIdMulsd, I::kIdVmulpd, d, ra, src);
-        saturate(d);
+        // |a * c| <= |a| <= DBL_MAX when |c| <= 1: nothing to saturate.
+        if (!(isConst(b) && std::fabs(p_.code[b].value) <= 1.0)) saturate(d);
         break;
       case Op::Min:
         op2(I::kIdMinsd, I::kIdVminpd, d, ra, src);
@@ -539,7 +543,8 @@ class Emitter {
     }
     const int d = destination(v, a, ra, keep, v);
     op2(I::kIdDivsd, I::kIdVdivpd, d, ra, src);
-    saturate(d);
+    // |a / c| <= |a| <= DBL_MAX when |c| >= 1: nothing to saturate.
+    if (!(safeConstant && std::fabs(p_.code[b].value) >= 1.0)) saturate(d);
     if (!safeConstant) {
       op2(I::kIdAndpd, I::kIdVandpd, d, vec(kScratchA));
       op2(I::kIdAndnpd, I::kIdVandnpd, kScratchA, pool(kOne));
