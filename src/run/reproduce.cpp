@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -150,6 +151,30 @@ void fitnessPlot(const std::string& base, const std::string& title,
   io::plotLines(base, plot);
 }
 
+// "k=v, k=v" of a parameter map ("-" when empty).
+std::string joined(const std::map<std::string, std::string>& params) {
+  std::string text;
+  for (const auto& [key, value] : params) text += (text.empty() ? "" : ", ") + key + "=" + value;
+  return text.empty() ? "-" : text;
+}
+
+// The settings of a benchmark experiment, for the report.
+std::vector<std::vector<std::string>> settingsTable(const ExperimentConfig& c) {
+  return {{"setting", "value"},
+          {"config", "`" + c.name + "` (seed " + std::to_string(c.seed) + ")"},
+          {"environment", c.env + " (" + joined(c.envParams) + ")"},
+          {"learner, short trial", c.learner + " (" + joined(c.learnerParams) + ")"},
+          {"trials per fitness", std::to_string(c.trials)},
+          {"GP", fmt::format("population {}, {} generations, crossover {}, elitism {}, "
+                             "tournament {}, size penalty {} per node",
+                             c.gp.population, c.gp.generations, c.gp.crossoverRate, c.gp.elitism,
+                             c.gp.tournamentSize, c.gp.sizePenalty)},
+          {"primitives", c.primitives + (c.withOriginal ? " (features added to the variables)"
+                                                        : " (features replace the variables)")},
+          {"long test",
+           fmt::format("{} runs per feature set ({})", c.assessRuns, joined(c.assessParams))}};
+}
+
 std::string featuresText(const expr::FeaturesFile& f) {
   std::string text;
   for (std::size_t k = 0; k < f.genome.featureCount(); ++k) {
@@ -187,6 +212,9 @@ io::Report benchmark(Experiment& e, const ExperimentConfig& config, const std::s
   r.image(fs::path(e.dir()).filename().string() + "/fitness-" + config.name + ".png",
           "(b) best and mean fitness of the GP population per generation");
   r.table(summaryTable(e.dir() + "/" + assessName));
+  r.paragraph("Settings (the full resolved config: `" + fs::path(e.dir()).filename().string() +
+              "/" + evolveName + "/config.toml`):");
+  r.table(settingsTable(config));
   r.paragraph("Discovered features (simplified; `" + fs::path(e.dir()).filename().string() + "/" +
               evolveName + "/best.features`):");
   r.code(featuresText(features));
