@@ -1,26 +1,12 @@
+set title 'Speed-up over the tree-walking interpreter (Figure 3 of Girgin and Preux)'
+set xlabel 'depth of the complete tree'
+set ylabel 'speed-up'
+set key top left
+set grid
+set logscale y
 set terminal pngcairo size 900,600
-set output '/tmp/repro-quick/fig3/jit/jit.png'
-set title 'Speed-up over the tree-walking interpreter (Figure 3 of Girgin & Preux)'
-set xlabel 'depth of the complete tree'
-set ylabel 'speed-up'
-set logscale y
-set key top left
-set grid
-set datafile missing 'NaN'
-plot '/tmp/repro-quick/fig3/jit/jit_speedup.dat' u 1:3 w lp lw 2 lc 1 t 'jit {+,-,*,/}', '' u 1:4 w lp lw 2 lc 2 t 'aot {+,-,*,/}', '' u 1:5 w lp lw 2 lc 3 t 'batch {+,-,*,/}', '' u 1:2 w lp lw 2 lc 4 t 'interp {+,-,*,/}', '' u 1:7 w lp dt 2 lc 1 t 'jit +sin,cos,sqrt', '' u 1:8 w lp dt 2 lc 2 t 'aot +sin,cos,sqrt', '' u 1:9 w lp dt 2 lc 3 t 'batch +sin,cos,sqrt', '' u 1:6 w lp dt 2 lc 4 t 'interp +sin,cos,sqrt', '-' w p pt 7 ps 2 lc 7 t 'paper, GNU Lightning (about 75x at depth 8)'
-8 75
-e
-unset output
+set output 'jit.png'
+plot 'jit.dat' index 0 using 1:2 with linespoints pt 7 lw 2 lc 1 title 'jit {+,-,*,/}', 'jit.dat' index 1 using 1:2 with linespoints pt 7 lw 2 lc 2 title 'aot {+,-,*,/}', 'jit.dat' index 2 using 1:2 with linespoints pt 7 lw 2 lc 3 title 'batch {+,-,*,/}', 'jit.dat' index 3 using 1:2 with linespoints pt 7 lw 2 lc 4 title 'interp {+,-,*,/}', 'jit.dat' index 4 using 1:2 with linespoints pt 7 lw 2 lc 1 dt 2 title 'jit +sin,cos,sqrt', 'jit.dat' index 5 using 1:2 with linespoints pt 7 lw 2 lc 2 dt 2 title 'aot +sin,cos,sqrt', 'jit.dat' index 6 using 1:2 with linespoints pt 7 lw 2 lc 3 dt 2 title 'batch +sin,cos,sqrt', 'jit.dat' index 7 using 1:2 with linespoints pt 7 lw 2 lc 4 dt 2 title 'interp +sin,cos,sqrt', 'jit.dat' index 8 using 1:2 with linespoints pt 7 lw 2 lc 7 title 'paper, GNU Lightning (about 75x at depth 8)'
 set terminal svg size 900,600
-set output '/tmp/repro-quick/fig3/jit/jit.svg'
-set title 'Speed-up over the tree-walking interpreter (Figure 3 of Girgin & Preux)'
-set xlabel 'depth of the complete tree'
-set ylabel 'speed-up'
-set logscale y
-set key top left
-set grid
-set datafile missing 'NaN'
-plot '/tmp/repro-quick/fig3/jit/jit_speedup.dat' u 1:3 w lp lw 2 lc 1 t 'jit {+,-,*,/}', '' u 1:4 w lp lw 2 lc 2 t 'aot {+,-,*,/}', '' u 1:5 w lp lw 2 lc 3 t 'batch {+,-,*,/}', '' u 1:2 w lp lw 2 lc 4 t 'interp {+,-,*,/}', '' u 1:7 w lp dt 2 lc 1 t 'jit +sin,cos,sqrt', '' u 1:8 w lp dt 2 lc 2 t 'aot +sin,cos,sqrt', '' u 1:9 w lp dt 2 lc 3 t 'batch +sin,cos,sqrt', '' u 1:6 w lp dt 2 lc 4 t 'interp +sin,cos,sqrt', '-' w p pt 7 ps 2 lc 7 t 'paper, GNU Lightning (about 75x at depth 8)'
-8 75
-e
-unset output
+set output 'jit.svg'
+plot 'jit.dat' index 0 using 1:2 with linespoints pt 7 lw 2 lc 1 title 'jit {+,-,*,/}', 'jit.dat' index 1 using 1:2 with linespoints pt 7 lw 2 lc 2 title 'aot {+,-,*,/}', 'jit.dat' index 2 using 1:2 with linespoints pt 7 lw 2 lc 3 title 'batch {+,-,*,/}', 'jit.dat' index 3 using 1:2 with linespoints pt 7 lw 2 lc 4 title 'interp {+,-,*,/}', 'jit.dat' index 4 using 1:2 with linespoints pt 7 lw 2 lc 1 dt 2 title 'jit +sin,cos,sqrt', 'jit.dat' index 5 using 1:2 with linespoints pt 7 lw 2 lc 2 dt 2 title 'aot +sin,cos,sqrt', 'jit.dat' index 6 using 1:2 with linespoints pt 7 lw 2 lc 3 dt 2 title 'batch +sin,cos,sqrt', 'jit.dat' index 7 using 1:2 with linespoints pt 7 lw 2 lc 4 dt 2 title 'interp +sin,cos,sqrt', 'jit.dat' index 8 using 1:2 with linespoints pt 7 lw 2 lc 7 title 'paper, GNU Lightning (about 75x at depth 8)'
