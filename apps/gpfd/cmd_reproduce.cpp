@@ -27,6 +27,7 @@ struct ReproduceCli {
   std::string out = "results/reproduce";
   int threads = 0;
   bool quiet = false;
+  bool skipFourier = false;
 };
 
 // Runs this same program's `bench jit` (its AOT reference lives in the tool).
@@ -48,6 +49,7 @@ int reproduceCommand(const ReproduceCli& c) {
   o.version = kVersion;
   o.revision = kRevision;
   o.quiet = c.quiet;
+  o.skipFourier = c.skipFourier;
   o.stop = &stopRequested;
   o.loadConfig = [](const std::string& name, const std::vector<std::string>& overrides) {
     return loadConfig(name, overrides);
@@ -83,6 +85,8 @@ const CommandRegistration registration{
       cmd->add_option("--threads", c->threads, "Worker threads (0: all cores)")
           ->check(CLI::NonNegativeNumber);
       cmd->add_flag("--quiet", c->quiet, "No progress output");
+      cmd->add_flag("--skip-fourier", c->skipFourier,
+                    "Leave out the Fourier-basis assessments (a later run adds them)");
       return [c] { return reproduceCommand(*c); };
     }};
 

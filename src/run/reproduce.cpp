@@ -28,6 +28,7 @@ class Experiment {
   }
 
   const std::string& dir() const { return dir_; }
+  const ReproduceOptions& options() const { return o_; }
   // Compute time of the experiment's steps, whether they ran now or in an earlier invocation:
   // the GP runs' generation times and the assessments' recorded times.
   double evolveSeconds() const { return evolveSeconds_; }
@@ -192,14 +193,24 @@ io::Report benchmark(Experiment& e, const ExperimentConfig& config, const std::s
   const auto history = e.evolve(config, evolveName);
   const LearningTask task(config, LearningTask::Budget::Assessment);
   const auto features = e.discovered(evolveName, task);
-  std::vector<FeatureSet> sets{
-      {"original", std::make_shared<const jit::RawFeatureMap>(task.stateDim())}};
+  const FeatureSet original{"original",
+                            std::make_shared<const jit::RawFeatureMap>(task.stateDim())};
+  std::vector<FeatureSet> sets{original};
   sets.insert(sets.end(), extraSets.begin(), extraSets.end());
   sets.push_back(
       {"discovered", genomeFeatureMap(features.genome, task.stateDim(), config.withOriginal)});
-  if (withFourier) sets.push_back(fourierFeatureSet(task, 3));
   const std::string assessName = "assess-" + config.name;
   e.assess(task, sets, assessName, config.env + " (" + config.name + ")");
+  // The Fourier basis against the original variables (same seeds, so the same original runs),
+  // in its own directory so that it can be left out and added later.
+  const std::string fourierName = assessName + "-fourier";
+  const bool fourierInMain =
+      readFile(e.dir() + "/" + assessName + "/summary.csv").find("\nfourier-") !=
+      std::string::npos;  // Older layout.
+  if (withFourier && !fourierInMain && !e.options().skipFourier) {
+    e.assess(task, {original, fourierFeatureSet(task, 3)}, fourierName,
+             config.env + " (" + config.name + "), Fourier basis");
+  }
   fitnessPlot(e.dir() + "/fitness-" + config.name,
               "GP fitness per generation (" + config.name + ")", {{config.name, history}}, true);
 
@@ -211,7 +222,18 @@ io::Report benchmark(Experiment& e, const ExperimentConfig& config, const std::s
               " runs with a 95% confidence band");
   r.image(fs::path(e.dir()).filename().string() + "/fitness-" + config.name + ".png",
           "(b) best and mean fitness of the GP population per generation");
-  r.table(summaryTable(e.dir() + "/" + assessName));
+  auto table = summaryTable(e.dir() + "/" + assessName);
+  if (fs::exists(e.dir() + "/" + fourierName + "/summary.csv")) {
+    const auto fourier = summaryTable(e.dir() + "/" + fourierName);
+    table.insert(table.end(), fourier.begin() + 2, fourier.end());  // Header and original out.
+  } else if (withFourier && !fourierInMain) {
+    r.paragraph("The Fourier basis was left out of this run (`--skip-fourier`).");
+  }
+  r.table(table);
+  if (fs::exists(e.dir() + "/" + fourierName + "/summary.csv")) {
+    r.image(fs::path(e.dir()).filename().string() + "/" + fourierName + "/curves.png",
+            "the Fourier basis (order 3) against the original variables");
+  }
   r.paragraph("Settings (the full resolved config: `" + fs::path(e.dir()).filename().string() +
               "/" + evolveName + "/config.toml`):");
   r.table(settingsTable(config));
