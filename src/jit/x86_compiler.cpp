@@ -2,6 +2,7 @@
 
 #include <bit>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -521,7 +522,21 @@ class Emitter {
     namespace I = x86::Inst;
     const asmjit::Operand src = operand(b);
     const bool safeConstant = isConst(b);  // Lowering folded near-zero constant denominators.
-    if (!safeConstant) {
+    if (!safeConstant && (batch_ || vex_)) {
+      // AVX: mask = !(|b| > kNearZero) (NaN included), then one vblendvpd picks 1 under it.
+      const x86::Vec mask = vec(kScratchA);
+      if (values_[b].reg >= 0) {
+        a_.vandpd(mask, vec(values_[b].reg), pool(kAbsMask));
+      } else {
+        load(kScratchA, slotMem(values_[b].slot));
+        a_.vandpd(mask, mask, pool(kAbsMask));
+      }
+      if (batch_) {
+        a_.vcmppd(mask, mask, pool(kNearZero), 0x1a);  // NGT_UQ.
+      } else {
+        a_.vcmpsd(x86::xmm(kScratchA), x86::xmm(kScratchA), pool(kNearZero), 0x1a);
+      }
+    } else if (!safeConstant) {
       if (batch_) {
         if (values_[b].reg >= 0) {
           a_.vandpd(x86::ymm(kScratchA), x86::ymm(values_[b].reg), pool(kAbsMask));
@@ -545,7 +560,9 @@ class Emitter {
     op2(I::kIdDivsd, I::kIdVdivpd, d, ra, src);
     // |a / c| <= |a| <= DBL_MAX when |c| >= 1: nothing to saturate.
     if (!(safeConstant && std::fabs(p_.code[b].value) >= 1.0)) saturate(d);
-    if (!safeConstant) {
+    if (!safeConstant && (batch_ || vex_)) {
+      a_.vblendvpd(vec(d), vec(d), pool(kOne), vec(kScratchA));
+    } else if (!safeConstant) {
       op2(I::kIdAndpd, I::kIdVandpd, d, vec(kScratchA));
       op2(I::kIdAndnpd, I::kIdVandnpd, kScratchA, pool(kOne));
       op2(I::kIdOrpd, I::kIdVorpd, d, vec(kScratchA));
@@ -617,6 +634,7 @@ class Emitter {
   x86::Assembler& a_;
   const Program& p_;
   const bool batch_;
+  const bool vex_ = hostHasAvx();  // AVX encodings allowed in the scalar function too.
   const bool frame_;
   const int width_;
   bool calls_ = false;
@@ -691,8 +709,21 @@ NativeCode::~NativeCode() {
 
 bool jitAvailable() { return true; }
 
+// GPFD_JIT_SSE2=1 makes the JIT use SSE2 only, as on a CPU without AVX (tests use it).
+bool sse2Only() {
+  const char* value = std::getenv("GPFD_JIT_SSE2");
+  return value != nullptr && std::string(value) == "1";
+}
+
+bool hostHasAvx() {
+  static const bool has =
+      !sse2Only() && asmjit::CpuInfo::host().hasFeature(asmjit::CpuFeatures::X86::kAVX);
+  return has;
+}
+
 bool hostHasAvx2() {
-  static const bool has = asmjit::CpuInfo::host().hasFeature(asmjit::CpuFeatures::X86::kAVX2);
+  static const bool has =
+      !sse2Only() && asmjit::CpuInfo::host().hasFeature(asmjit::CpuFeatures::X86::kAVX2);
   return has;
 }
 
@@ -705,6 +736,11 @@ NativeCode compileBatch(const Program& program) { return compile(program, true);
 
 NativeCode::~NativeCode() = default;
 bool jitAvailable() { return false; }
+bool hostHasAvx() {
+  static const bool has = asmjit::CpuInfo::host().hasFeature(asmjit::CpuFeatures::X86::kAVX);
+  return has;
+}
+
 bool hostHasAvx2() { return false; }
 bool jitUsesDualMapping() { return false; }
 NativeCode compileScalar(const Program&) { throw CompileError("built without the JIT"); }

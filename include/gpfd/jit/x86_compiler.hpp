@@ -72,6 +72,8 @@ class NativeCode {
 bool jitAvailable();
 // Whether the host CPU (and OS) run AVX2 code, by asmjit's CpuInfo.
 bool hostHasAvx2();
+// Whether it runs AVX (VEX-encoded) code; the scalar function then uses some AVX instructions.
+bool hostHasAvx();
 // Whether executable code is mapped without a writable view at the same address (asmjit dual
 // mapping); false when the runtime had to fall back to read-write-execute pages.
 bool jitUsesDualMapping();
