@@ -5,6 +5,7 @@
 #include <tbb/task_arena.h>
 
 #include <cmath>
+#include <sstream>
 
 #include "gpfd/io/gnuplot.hpp"
 #include "gpfd/rl/fourier_basis.hpp"
@@ -136,6 +137,22 @@ void writeAssessment(const std::string& dir, const AssessmentResult& result,
   writeFileAtomically(dir + "/summary.csv", csv);
   writeFileAtomically(dir + "/summary.md", md);
   io::plotLines(dir + "/curves", plot);
+}
+
+std::vector<std::vector<std::string>> readSummaryTable(const std::string& dir) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream in(readFile(dir + "/summary.md"));
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.size() < 4 || line.front() != '|' || line.starts_with("|---")) continue;
+    std::vector<std::string> cells;
+    std::size_t from = 2;  // After "| ".
+    for (std::size_t bar; (bar = line.find(" |", from)) != std::string::npos; from = bar + 3) {
+      cells.push_back(line.substr(from, bar - from));
+    }
+    rows.push_back(std::move(cells));
+  }
+  return rows;
 }
 
 }  // namespace gpfd::run

@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <map>
 #include <set>
-#include <sstream>
 
 #include "gpfd/expr/features_file.hpp"
 #include "gpfd/expr/parse.hpp"
@@ -106,30 +105,6 @@ class Experiment {
   std::set<std::string> counted_;  // GP runs whose time is in evolveSeconds_.
 };
 
-// The summary table of an assessment, for the report.
-std::vector<std::vector<std::string>> summaryTable(const std::string& dir) {
-  std::vector<std::vector<std::string>> rows{
-      {"feature set", "runs", "final (mean ± 95% CI)", "vs original: Welch p", "Mann-Whitney p",
-       "Cohen's d", "A12", "area under curve", "area: Welch p", "area: Mann-Whitney p"}};
-  std::istringstream in(readFile(dir + "/summary.csv"));
-  std::string line;
-  std::getline(in, line);  // Header.
-  while (std::getline(in, line)) {
-    std::vector<std::string> f;
-    std::stringstream cells(line);
-    std::string cell;
-    while (std::getline(cells, cell, ',')) f.push_back(cell);
-    if (f.size() < 16) continue;
-    const auto num = [](const std::string& s) { return std::stod(s); };
-    rows.push_back({f[0], f[1], fmt::format("{:.4g} ± {:.3g}", num(f[2]), num(f[4])),
-                    fmt::format("{:.3g}", num(f[7])), fmt::format("{:.3g}", num(f[9])),
-                    fmt::format("{:.3g}", num(f[10])), fmt::format("{:.3g}", num(f[11])),
-                    fmt::format("{:.4g} ± {:.3g}", num(f[12]), num(f[13])),
-                    fmt::format("{:.3g}", num(f[14])), fmt::format("{:.3g}", num(f[15]))});
-  }
-  return rows;
-}
-
 // GP fitness per generation: best (and mean) of each run.
 void fitnessPlot(const std::string& base, const std::string& title,
                  const std::vector<std::pair<std::string, std::vector<GenerationRecord>>>& runs,
@@ -204,10 +179,7 @@ io::Report benchmark(Experiment& e, const ExperimentConfig& config, const std::s
   // The Fourier basis against the original variables (same seeds, so the same original runs),
   // in its own directory so that it can be left out and added later.
   const std::string fourierName = assessName + "-fourier";
-  const bool fourierInMain =
-      readFile(e.dir() + "/" + assessName + "/summary.csv").find("\nfourier-") !=
-      std::string::npos;  // Older layout.
-  if (withFourier && !fourierInMain && !e.options().skipFourier) {
+  if (withFourier && !e.options().skipFourier) {
     e.assess(task, {original, fourierFeatureSet(task, 3)}, fourierName,
              config.env + " (" + config.name + "), Fourier basis");
   }
@@ -222,15 +194,16 @@ io::Report benchmark(Experiment& e, const ExperimentConfig& config, const std::s
               " runs with a 95% confidence band");
   r.image(fs::path(e.dir()).filename().string() + "/fitness-" + config.name + ".png",
           "(b) best and mean fitness of the GP population per generation");
-  auto table = summaryTable(e.dir() + "/" + assessName);
-  if (fs::exists(e.dir() + "/" + fourierName + "/summary.csv")) {
-    const auto fourier = summaryTable(e.dir() + "/" + fourierName);
+  auto table = readSummaryTable(e.dir() + "/" + assessName);
+  const bool haveFourier = fs::exists(e.dir() + "/" + fourierName + "/summary.md");
+  if (haveFourier) {
+    const auto fourier = readSummaryTable(e.dir() + "/" + fourierName);
     table.insert(table.end(), fourier.begin() + 2, fourier.end());  // Header and original out.
-  } else if (withFourier && !fourierInMain) {
+  } else if (withFourier) {
     r.paragraph("The Fourier basis was left out of this run (`--skip-fourier`).");
   }
   r.table(table);
-  if (fs::exists(e.dir() + "/" + fourierName + "/summary.csv")) {
+  if (haveFourier) {
     r.image(fs::path(e.dir()).filename().string() + "/" + fourierName + "/curves.png",
             "the Fourier basis (order 3) against the original variables");
   }

@@ -59,4 +59,8 @@ void writeAssessment(const std::string& dir, const AssessmentResult& result,
                      const std::vector<SetSummary>& summary, const std::string& title,
                      const std::string& xlabel);
 
+// The statistics table of DIR/summary.md (written by writeAssessment): the header row, then one
+// row per feature set, each a list of cells as formatted there.
+std::vector<std::vector<std::string>> readSummaryTable(const std::string& dir);
+
 }  // namespace gpfd::run
