@@ -155,7 +155,7 @@ void Swimmer::setState(std::span<const double> state) {
 
 void Swimmer::derivative(std::span<const double> s, std::span<const double> torque,
                          std::span<double> out) {
-  if (fixedSizeKernel_) {
+  if (fixedSize()) {
     swimmerFixedDerivative(body_, s.data(), torque.data(), out.data());
   } else {
     derivativeReference(s, torque, out);

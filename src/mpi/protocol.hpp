@@ -82,7 +82,7 @@ std::vector<char> receive(const MPI_Status& status);
 MPI_Status waitForMessage(int source);
 
 // Sleep between polls: from kMinPause, doubling up to kMaxPause while nothing arrives. The
-// queued task of each worker (mpi_evaluator.hpp) hides this latency when evaluations take
+// queued tasks of each worker (mpi_evaluator.cpp) hide this latency when evaluations take
 // longer than kMaxPause; shorter pauses cost CPU in every idle process.
 inline constexpr std::chrono::microseconds kMinPause{10};
 inline constexpr std::chrono::microseconds kMaxPause{1000};

@@ -9,7 +9,7 @@
 namespace gpfd::rl {
 
 FourierBasis::FourierBasis(std::vector<StateRange> ranges, int order, Coupling coupling)
-    : ranges_(std::move(ranges)), coupling_(coupling) {
+    : ranges_(std::move(ranges)), order_(order), coupling_(coupling) {
   const std::size_t d = ranges_.size();
   if (d == 0 || order < 1) throw std::invalid_argument("FourierBasis needs d >= 1 and order >= 1");
   if (coupling == Coupling::Full) {
@@ -59,10 +59,7 @@ void FourierBasis::evaluate(const double* state, double* features) const {
     // first variable's coefficient fastest) are the tensor product of the per-variable factors
     // exp(i pi k x_i), k = 0..order, built one variable at a time: (order + 1)^d complex products
     // instead of as many cosines.
-    const std::size_t base = terms == 1
-                                 ? 1
-                                 : static_cast<std::size_t>(std::llround(std::pow(
-                                       static_cast<double>(terms), 1.0 / static_cast<double>(d))));
+    const auto base = static_cast<std::size_t>(order_) + 1;
     thread_local std::vector<std::complex<double>> product, factor;  // No allocation per call.
     product.resize(terms);
     factor.resize(base);

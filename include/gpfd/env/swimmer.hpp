@@ -56,7 +56,8 @@ class Swimmer final : public Environment {
   // implementation, kept as the reference for tests and benchmarks.
   void derivativeReference(std::span<const double> state, std::span<const double> torque,
                            std::span<double> out);
-  // When on, step() integrates with derivativeReference (for tests and benchmarks; default off).
+  // When on, step() and derivative() use derivativeReference (for tests and benchmarks; default
+  // off).
   void setReferenceSolver(bool on) { referenceSolver_ = on; }
 
  private:

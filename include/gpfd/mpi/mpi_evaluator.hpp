@@ -1,8 +1,8 @@
 // mpi: the master's side of distributed fitness evaluation. MpiEvaluator farms the genomes of a
 // batch out to the worker ranks (1..N-1, each in serveAsWorker) with dynamic load balancing: a
-// worker holds as many tasks as it has threads, plus one queued while many remain, and gets the
-// next genome whenever it returns a result. Each genome's fitness depends only on (genome, seed,
-// config), so the results are bit-identical to ThreadEvaluator's for any number of ranks and
+// worker holds as many tasks as it has threads, plus up to two queued while enough remain, and
+// gets the next genome whenever it returns a result. Each genome's fitness depends only on (genome,
+// seed, config), so the results are bit-identical to ThreadEvaluator's for any number of ranks and
 // threads.
 #pragma once
 
@@ -54,7 +54,7 @@ class MpiEvaluator final : public gp::Evaluator {
  private:
   const Session& session_;
   std::function<void()> onEvaluated_;
-  // credit_[w - 1]: worker rank w's threads minus its tasks out (-1: one task queued there).
+  // credit_[w - 1]: worker rank w's threads minus its tasks out (negative: tasks queued there).
   std::vector<int> credit_;
   std::uint64_t nextTask_ = 0;
 };

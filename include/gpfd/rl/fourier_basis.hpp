@@ -32,6 +32,7 @@ class FourierBasis final : public jit::FeatureMap {
 
  private:
   std::vector<StateRange> ranges_;
+  int order_;
   Coupling coupling_;
   std::vector<double> coefficients_;  // outputDim() x d, row-major: the vectors c.
 };
