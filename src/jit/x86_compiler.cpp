@@ -117,20 +117,31 @@ constexpr int kValueRegs = 14;  // xmm0..xmm13 hold values.
 constexpr int kScratchA = 14;   // xmm14/xmm15: scratch within one instruction.
 constexpr int kScratchB = 15;
 
+// lastUse[v]: the last instruction reading value v (0 when none does).
+std::vector<std::uint32_t> lastUses(const Program& program) {
+  std::vector<std::uint32_t> lastUse(program.code.size(), 0);
+  for (std::size_t i = 0; i < program.code.size(); ++i) {
+    const Instr& in = program.code[i];
+    const int ar = expr::arity(in.op);
+    if (ar >= 1) lastUse[in.a] = static_cast<std::uint32_t>(i);
+    if (ar == 2) lastUse[in.b] = static_cast<std::uint32_t>(i);
+  }
+  return lastUse;
+}
+
 class Emitter {
  public:
-  Emitter(x86::Assembler& a, const Program& program, bool batch, bool frame)
-      : a_(a), p_(program), batch_(batch), frame_(frame), width_(batch ? 32 : 8) {}
+  Emitter(x86::Assembler& a, const Program& program, const std::vector<std::uint32_t>& lastUse,
+          bool batch, bool frame)
+      : a_(a),
+        p_(program),
+        lastUse_(lastUse),
+        batch_(batch),
+        frame_(frame),
+        width_(batch ? 32 : 8) {}
 
   void emit() {
     const std::size_t n = p_.code.size();
-    lastUse_.assign(n, 0);
-    for (std::size_t i = 0; i < n; ++i) {
-      const Instr& in = p_.code[i];
-      const int ar = expr::arity(in.op);
-      if (ar >= 1) lastUse_[in.a] = static_cast<std::uint32_t>(i);
-      if (ar == 2) lastUse_[in.b] = static_cast<std::uint32_t>(i);
-    }
     // Output k is stored right after its value is computed.
     outputsAt_.assign(n, -1);
     nextOutput_.assign(p_.outputs.size(), -1);
@@ -633,6 +644,7 @@ class Emitter {
 
   x86::Assembler& a_;
   const Program& p_;
+  const std::vector<std::uint32_t>& lastUse_;
   const bool batch_;
   const bool vex_ = hostHasAvx();  // AVX encodings allowed in the scalar function too.
   const bool frame_;
@@ -640,7 +652,6 @@ class Emitter {
   bool calls_ = false;
   x86::Gp state_, out_;
   asmjit::Label poolLabel_, entryLabel_;
-  std::vector<std::uint32_t> lastUse_;
   std::vector<int> outputsAt_, nextOutput_, pool_;
   std::vector<Value> values_;
   int owner_[kValueRegs] = {};
@@ -651,15 +662,8 @@ class Emitter {
 // Whether more values than there are registers may be live at once (constants included: a
 // constant loaded into a register stays there until its last use), i.e. whether the code may
 // spill and so needs a frame. Deciding this up front saves emitting large programs twice.
-bool mayNeedSpills(const Program& program) {
+bool mayNeedSpills(const Program& program, const std::vector<std::uint32_t>& lastUse) {
   const std::size_t n = program.code.size();
-  std::vector<std::uint32_t> lastUse(n, 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    const Instr& in = program.code[i];
-    const int ar = expr::arity(in.op);
-    if (ar >= 1) lastUse[in.a] = static_cast<std::uint32_t>(i);
-    if (ar == 2) lastUse[in.b] = static_cast<std::uint32_t>(i);
-  }
   std::vector<int> dying(n, 0);  // Values whose last use is instruction i.
   int live = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -674,14 +678,15 @@ bool mayNeedSpills(const Program& program) {
 NativeCode compile(const Program& program, bool batch) {
   if (batch && !hostHasAvx2()) throw CompileError("the CPU has no AVX2");
   Runtime& rt = runtime();
-  bool frame = batch || program.hasCalls() || mayNeedSpills(program);
+  const auto lastUse = lastUses(program);
+  bool frame = batch || program.hasCalls() || mayNeedSpills(program, lastUse);
   for (;;) {
     asmjit::CodeHolder code;
     RecordingErrorHandler errors;
     code.init(rt.jit->environment());
     code.setErrorHandler(&errors);
     x86::Assembler assembler(&code);
-    Emitter emitter(assembler, program, batch, frame);
+    Emitter emitter(assembler, program, lastUse, batch, frame);
     try {
       emitter.emit();
     } catch (const NeedFrame&) {
