@@ -5,7 +5,6 @@
 #include <chrono>
 #include <filesystem>
 #include <map>
-#include <set>
 
 #include "gpfd/expr/features_file.hpp"
 #include "gpfd/expr/parse.hpp"
@@ -38,8 +37,11 @@ class Experiment {
     return o_.loadConfig(o_.paperScale ? base : base + "-quick", overrides);
   }
 
-  // Runs, resumes, or reuses the GP run in dir()/name; returns its history.
-  std::vector<GenerationRecord> evolve(const ExperimentConfig& config, const std::string& name) {
+  // Runs, resumes, or reuses the GP run in dir()/name; returns its history. A run asked for
+  // again in this invocation is not resumed a second time.
+  const std::vector<GenerationRecord>& evolve(const ExperimentConfig& config,
+                                              const std::string& name) {
+    if (const auto done = histories_.find(name); done != histories_.end()) return done->second;
     const std::string dir = dir_ + "/" + name;
     DiscoveryOptions d;
     d.outDir = dir;
@@ -60,10 +62,8 @@ class Experiment {
         o_.stop ? *o_.stop : never);
     if (!run->finished())
       throw InputError("interrupted; run the same command again to continue", dir);
-    if (counted_.insert(name).second) {
-      for (const auto& r : run->history()) evolveSeconds_ += r.seconds;
-    }
-    return run->history();
+    for (const auto& r : run->history()) evolveSeconds_ += r.seconds;
+    return histories_[name] = run->history();
   }
 
   // The discovered features of the GP run in dir()/name.
@@ -102,7 +102,7 @@ class Experiment {
   std::string dir_;
   double evolveSeconds_ = 0.0;
   double assessSeconds_ = 0.0;
-  std::set<std::string> counted_;  // GP runs whose time is in evolveSeconds_.
+  std::map<std::string, std::vector<GenerationRecord>> histories_;  // GP runs done, by name.
 };
 
 // GP fitness per generation: best (and mean) of each run.
@@ -165,7 +165,7 @@ io::Report benchmark(Experiment& e, const ExperimentConfig& config, const std::s
                      const std::string& description, bool withFourier,
                      std::vector<FeatureSet> extraSets = {}) {
   const std::string evolveName = "evolve-" + config.name;
-  const auto history = e.evolve(config, evolveName);
+  const auto& history = e.evolve(config, evolveName);
   const LearningTask task(config, LearningTask::Budget::Assessment);
   const auto features = e.discovered(evolveName, task);
   const FeatureSet original{"original",
