@@ -8,6 +8,7 @@
 #include "gpfd/env/environment.hpp"
 #include "gpfd/expr/features_file.hpp"
 #include "gpfd/run/assessment.hpp"
+#include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
 #include "param_routing.hpp"
 
@@ -85,9 +86,7 @@ int assess(const AssessOptions& o) {
   if (sets.empty())
     throw InputError("nothing to assess: give --features FILE... or --raw", "gpfd assess");
   const std::string out = o.out.empty() ? "results/assess-" + config.env : o.out;
-  std::error_code ec;
-  std::filesystem::create_directories(out, ec);
-  if (ec) throw InputError("cannot create the output directory: " + ec.message(), out);
+  createDirectories(out);
 
   if (!o.quiet) {
     fmt::print("gpfd assess: {} feature sets x {} runs on {} ({}), seed {}\n", sets.size(),
@@ -138,7 +137,7 @@ const CommandRegistration registration{
       cmd->add_option("--param", o->params, "k=v for the environment or the learner (repeatable)");
       cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str();
       cmd->add_option("--threads", o->threads, "Worker threads (0: all cores)")
-          ->check(CLI::NonNegativeNumber);
+          ->check(threadCount());
       cmd->add_option("--out", o->out, "Output directory (default results/assess-ENV)");
       cmd->add_flag("--quiet", o->quiet, "Print nothing");
       return [o] { return assess(*o); };

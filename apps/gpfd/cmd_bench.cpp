@@ -167,9 +167,7 @@ int runBenchJit(const BenchJitArgs& args) {
   options.runs = args.runs;
   options.seed = args.seed;
   const fs::path dir(args.out);
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw InputError("cannot create the output directory", "--out " + args.out);
+  createDirectories(args.out);
 
   // AOT rows only for the seed the reference code was generated with.
   jit::AotLookup aot;

@@ -194,7 +194,7 @@ const CommandRegistration registration{
       cmd->add_option("--seed", o->seed, "Random seed (overrides seed)");
       cmd->add_option("--threads", o->threads,
                       "Worker threads (0: all cores); never changes results")
-          ->check(CLI::NonNegativeNumber);
+          ->check(threadCount());
       cmd->add_option("--population", o->population, "Population size (overrides gp.population)");
       cmd->add_option("--generations", o->generations,
                       "Generations (overrides gp.generations; may extend a resumed run)");

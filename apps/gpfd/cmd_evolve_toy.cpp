@@ -8,6 +8,7 @@
 #include "gpfd/expr/simplify.hpp"
 #include "gpfd/run/thread_evaluator.hpp"
 #include "gpfd/run/toy_task.hpp"
+#include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::app {
@@ -27,9 +28,7 @@ int runToy(const ToyOptions& o) {
   auto config = run::toyGpConfig(o.seed);
   if (o.population > 0) config.population = o.population;
   if (o.generations > 0) config.generations = o.generations;
-  std::error_code ec;
-  std::filesystem::create_directories(o.out, ec);
-  if (ec) throw InputError("cannot create the output directory: " + ec.message(), o.out);
+  createDirectories(o.out);
 
   const run::ToyTask task(o.samples, deriveSeed(o.seed, 7));
   run::ThreadEvaluator evaluator([&task](const expr::Genome& g, Rng&) { return task.rSquared(g); },
@@ -75,7 +74,7 @@ const CommandRegistration registration{
       cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str();
       cmd->add_option("--out", o->out, "Output directory")->capture_default_str();
       cmd->add_option("--threads", o->threads, "Worker threads (0: all cores)")
-          ->check(CLI::NonNegativeNumber);
+          ->check(threadCount());
       cmd->add_option("--population", o->population, "Population size (default 200)")
           ->check(CLI::PositiveNumber);
       cmd->add_option("--generations", o->generations, "Generations (default 40)")

@@ -83,7 +83,7 @@ const CommandRegistration registration{
       cmd->add_option("--seed", c->seed, "Random seed")->capture_default_str();
       cmd->add_option("--out", c->out, "Output directory")->capture_default_str();
       cmd->add_option("--threads", c->threads, "Worker threads (0: all cores)")
-          ->check(CLI::NonNegativeNumber);
+          ->check(threadCount());
       cmd->add_flag("--quiet", c->quiet, "No progress output");
       cmd->add_flag("--skip-fourier", c->skipFourier,
                     "Leave out the Fourier-basis assessments (a later run adds them)");

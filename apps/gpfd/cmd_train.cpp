@@ -154,11 +154,7 @@ int runTrain(const TrainArgs& args) {
   // Check the output directory before spending time on training.
   const std::string outDir =
       args.out.empty() ? fmt::format("gpfd-train-{}-{}", args.env, args.seed) : args.out;
-  std::error_code ec;
-  std::filesystem::create_directories(outDir, ec);
-  if (ec || !std::filesystem::is_directory(outDir)) {
-    throw InputError("cannot create the output directory: " + ec.message(), outDir);
-  }
+  createDirectories(outDir);
 
   auto progress = [&](const rl::CurvePoint& p) {
     if (!args.quiet) {

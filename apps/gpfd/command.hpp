@@ -20,6 +20,9 @@ struct Command {
 
 std::vector<Command>& commands();
 
+// The check of every --threads option: 0 (all cores) up to a sane bound.
+inline CLI::Range threadCount() { return CLI::Range(0, 4096); }
+
 struct CommandRegistration {
   CommandRegistration(std::string name, CommandSetup setup) {
     commands().push_back({std::move(name), std::move(setup)});

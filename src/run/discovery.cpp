@@ -104,10 +104,8 @@ std::unique_ptr<Discovery> Discovery::start(const ExperimentConfig& config,
   auto state = std::make_unique<State>(config, options);  // Compiles nothing yet; checks env.
   const bool existed = fs::exists(options.outDir);
   try {
-    std::error_code ec;
-    fs::create_directories(options.outDir + "/best", ec);
-    if (ec)
-      throw InputError("cannot create the results directory: " + ec.message(), options.outDir);
+    createDirectories(options.outDir, "results directory");
+    createDirectories(options.outDir + "/best", "results directory");
     writeFileAtomically(state->path("config.toml"), state->configText);
     const std::string processes =
         options.processes > 1 ? fmt::format(",\n \"mpi_processes\": {}", options.processes) : "";

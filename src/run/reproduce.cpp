@@ -22,7 +22,7 @@ namespace fs = std::filesystem;
 class Experiment {
  public:
   Experiment(const ReproduceOptions& o, std::string figure) : o_(o), dir_(o.outDir + "/" + figure) {
-    fs::create_directories(dir_);
+    createDirectories(dir_);
   }
 
   const std::string& dir() const { return dir_; }
@@ -88,7 +88,7 @@ class Experiment {
     }
     const auto result =
         runAssessment(task, sets, task.config().assessRuns, task.config().seed, o_.threads);
-    fs::create_directories(dir);
+    createDirectories(dir);
     writeAssessment(dir, result, summarizeAssessment(result, 0), title,
                     task.config().learner == "lpi" ? "lambda-PI iteration" : "policy update");
     const double seconds =
@@ -290,7 +290,7 @@ void reproduce(const std::vector<std::string>& figures, const ReproduceOptions& 
       throw InputError("unknown figure '" + f + "' (fig1, fig3, fig5, fig6, fig7 or all)", f);
     }
   }
-  fs::create_directories(o.outDir);
+  createDirectories(o.outDir);
   for (const auto& figure : figures) {
     if (!o.quiet) {
       fmt::print("{}:\n", figure);

@@ -5,6 +5,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -45,6 +46,15 @@ std::string readFile(const std::string& path) {
   out << in.rdbuf();
   if (in.bad()) throw InputError("cannot read", path);
   return out.str();
+}
+
+void createDirectories(const std::string& dir, const std::string& what) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir)) {
+    const std::string why = ec ? ec.message() : "a file is in the way";
+    throw InputError("cannot create the " + what + ": " + why, dir);
+  }
 }
 
 }  // namespace gpfd

@@ -13,4 +13,8 @@ void writeFileAtomically(const std::string& path, const std::string& contents);
 // The whole file; throws InputError naming the path when it cannot be read.
 std::string readFile(const std::string& path);
 
+// Creates `dir` and its parents where missing; throws InputError "cannot create the `what`"
+// naming it when that fails or when `dir` exists as something other than a directory.
+void createDirectories(const std::string& dir, const std::string& what = "output directory");
+
 }  // namespace gpfd
