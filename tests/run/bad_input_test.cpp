@@ -114,5 +114,15 @@ TEST(BadInput, UnwritableOutputOrFullDisk) {
   EXPECT_FALSE(std::filesystem::exists(dir));
 }
 
+TEST(BadInput, ReproduceRefusesUnknownFiguresAndUnwritableOutput) {
+  const auto dir = freshDir("reproduce-bad");
+  expectRefused("reproduce fig9 --out " + dir, dir, "unknown figure 'fig9'");
+  expectRefused("reproduce fig3 --out /dev/null/reproduce", "/dev/null/reproduce",
+                "cannot create the output directory");
+  EXPECT_EQ(runGpfd("reproduce fig3 --scale huge --out " + dir).status, 2);
+  EXPECT_EQ(runGpfd("reproduce fig3 --threads -1 --out " + dir).status, 2);
+  EXPECT_FALSE(std::filesystem::exists(dir));
+}
+
 }  // namespace
 }  // namespace gpfd::testing
