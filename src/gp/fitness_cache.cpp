@@ -1,5 +1,6 @@
 #include "gpfd/gp/fitness_cache.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -33,8 +34,12 @@ expr::Genome genomeFromKey(const std::string& key) {
   }
 }
 
-CachingEvaluator::CachingEvaluator(Evaluator& inner, int trialsPerEvaluation, int maxTrials)
-    : inner_(inner), trialsPerEvaluation_(trialsPerEvaluation), maxTrials_(maxTrials) {
+CachingEvaluator::CachingEvaluator(Evaluator& inner, int trialsPerEvaluation, int maxTrials,
+                                   int maxReevaluations)
+    : inner_(inner),
+      trialsPerEvaluation_(trialsPerEvaluation),
+      maxTrials_(maxTrials),
+      maxReevaluations_(maxReevaluations) {
   if (trialsPerEvaluation < 1) throw InputError("must be at least 1", "fitness.trials");
   if (maxTrials != 0 && maxTrials < trialsPerEvaluation) {
     throw InputError("must be 0 (no re-evaluation) or at least fitness.trials (" +
@@ -54,17 +59,38 @@ std::vector<double> CachingEvaluator::evaluate(const std::vector<const expr::Gen
   std::vector<const expr::Genome*> batch;
   std::vector<std::uint64_t> batchSeeds;
   std::map<std::string, std::size_t> pending;  // Key -> index in `batch`.
-  int reevaluated = 0;
+  std::vector<std::size_t> again;              // First occurrences of known keys wanting trials.
   for (std::size_t i = 0; i < genomes.size(); ++i) {
     keys[i] = canonicalKey(*genomes[i]);
     if (pending.count(keys[i])) continue;
     const auto known = entries_.find(keys[i]);
-    if (known != entries_.end() && !wantsTrials(known->second)) continue;
-    if (known != entries_.end()) ++reevaluated;
+    if (known != entries_.end()) {
+      if (wantsTrials(known->second)) {
+        pending[keys[i]] = std::numeric_limits<std::size_t>::max();  // Decided below.
+        again.push_back(i);
+      }
+      continue;
+    }
     pending[keys[i]] = batch.size();
     batch.push_back(genomes[i]);
     batchSeeds.push_back(seeds[i]);
   }
+  // The best known genomes first, in batch order among equals, up to the limit.
+  std::stable_sort(again.begin(), again.end(), [&](std::size_t a, std::size_t b) {
+    return entries_.at(keys[a]).mean > entries_.at(keys[b]).mean;
+  });
+  if (maxReevaluations_ >= 0 && again.size() > static_cast<std::size_t>(maxReevaluations_)) {
+    for (std::size_t j = static_cast<std::size_t>(maxReevaluations_); j < again.size(); ++j) {
+      pending.erase(keys[again[j]]);
+    }
+    again.resize(static_cast<std::size_t>(maxReevaluations_));
+  }
+  for (const std::size_t i : again) {
+    pending[keys[i]] = batch.size();
+    batch.push_back(genomes[i]);
+    batchSeeds.push_back(seeds[i]);
+  }
+  const int reevaluated = static_cast<int>(again.size());
   const auto fresh = inner_.evaluate(batch, batchSeeds);
   constexpr double worst = -std::numeric_limits<double>::infinity();
   for (const auto& [key, index] : pending) {

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 
 #include "gpfd/expr/features_file.hpp"
@@ -50,7 +51,8 @@ struct Discovery::State {
         configText(formatExperimentConfig(c)),
         task(c, LearningTask::Budget::Trial),
         evaluator(makeEvaluator()),
-        cache(*evaluator, c.trials, c.maxTrials),
+        cache(*evaluator, c.trials, c.maxTrials,
+              static_cast<int>(std::lround(c.reevaluationShare * c.gp.population))),
         evolution(gpConfig(c), searchSpace(c, static_cast<int>(task.stateDim())), cache,
                   reducer(c, task)) {}
 

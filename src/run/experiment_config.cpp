@@ -28,6 +28,7 @@ void visit(V& v, ExperimentConfig& c) {
   v.params("learner.params", c.learnerParams);
   v.integer("fitness", "trials", c.trials, 1, 1000);
   v.integer("fitness", "max_trials", c.maxTrials, 0, 100000);
+  v.real("fitness", "reevaluation_share", c.reevaluationShare, 0.0, 1.0);
   v.boolean("fitness", "common_seeds", c.gp.commonRandomNumbers);
   v.measure("fitness", "measure", c.measure);
   v.real("fitness", "last_fraction", c.lastFraction, 1e-9, 1.0);

@@ -143,28 +143,33 @@ std::string formatValidationCsv(const std::vector<ValidatedSet>& sets,
   return csv;
 }
 
-std::string formatFrontCsv(const std::vector<ValidatedSet>& sets,
-                           const std::vector<std::string>& stateNames) {
-  const std::size_t dim = stateNames.size();
-  const auto& original = sets[originalIndex(sets)];
-  std::vector<std::size_t> order(sets.size());
-  std::iota(order.begin(), order.end(), 0);
+std::vector<std::size_t> frontIndices(const std::vector<ValidatedSet>& sets, std::size_t dim) {
   const auto ranked = ranking(sets, dim);
   std::vector<std::size_t> position(sets.size());
   for (std::size_t r = 0; r < ranked.size(); ++r) position[ranked[r]] = r;
+  std::vector<std::size_t> order(sets.size());
+  std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     if (sets[a].size(dim) != sets[b].size(dim)) return sets[a].size(dim) < sets[b].size(dim);
     return position[a] < position[b];
   });
-  std::string csv = "size,features,mean,se,seeds,p_vs_original,set,expressions\n";
-  double best = -std::numeric_limits<double>::infinity();
-  bool any = false;
+  std::vector<std::size_t> front;
   for (const std::size_t i : order) {
+    if (front.empty() || sets[i].summary().mean > sets[front.back()].summary().mean) {
+      front.push_back(i);
+    }
+  }
+  return front;
+}
+
+std::string formatFrontCsv(const std::vector<ValidatedSet>& sets,
+                           const std::vector<std::string>& stateNames) {
+  const std::size_t dim = stateNames.size();
+  const auto& original = sets[originalIndex(sets)];
+  std::string csv = "size,features,mean,se,seeds,p_vs_original,set,expressions\n";
+  for (const std::size_t i : frontIndices(sets, dim)) {
     const auto& s = sets[i];
     const Summary summary = s.summary();
-    if (any && !(summary.mean > best)) continue;
-    any = true;
-    best = summary.mean;
     csv += fmt::format(
         "{},{},{},{},{},{},{},{}\n", s.size(dim), s.isOriginal() ? dim : s.genome.featureCount(),
         summary.mean, standardError(summary), summary.n,
@@ -172,6 +177,26 @@ std::string formatFrontCsv(const std::vector<ValidatedSet>& sets,
         s.isOriginal() ? "original" : "hall-of-fame", quoted(featuresText(s, stateNames)));
   }
   return csv;
+}
+
+std::string formatFrontTable(const std::vector<ValidatedSet>& sets,
+                             const std::vector<std::string>& stateNames) {
+  const std::size_t dim = stateNames.size();
+  const auto& original = sets[originalIndex(sets)];
+  std::string text = fmt::format("{:>5}  {:>8}  {:<22}  {:>9}  {}\n", "nodes", "features",
+                                 "validated (mean +- SE)", "p vs orig", "features");
+  for (const std::size_t i : frontIndices(sets, dim)) {
+    const auto& s = sets[i];
+    const Summary summary = s.summary();
+    text += fmt::format("{:>5}  {:>8}  {:<22}  {:>9}  {}\n", s.size(dim),
+                        s.isOriginal() ? dim : s.genome.featureCount(),
+                        fmt::format("{:.5g} +- {:.3g}", summary.mean, standardError(summary)),
+                        s.isOriginal()
+                            ? std::string("-")
+                            : fmt::format("{:.3g}", comparePaired(s.scores, original.scores).p),
+                        featuresText(s, stateNames));
+  }
+  return text;
 }
 
 std::string formatMeanSe(const Summary& summary) {

@@ -63,6 +63,20 @@ TEST(FitnessCache, AGenomeMetAgainGetsFreshTrialsUpToTheCap) {
   EXPECT_EQ(inner.calls, 3);
 }
 
+TEST(FitnessCache, AtMostTheLimitIsReevaluatedBestFirst) {
+  SeedScore inner;
+  CachingEvaluator cache(inner, 1, 10, 2);
+  const auto a = genome("a"), b = genome("b"), c = genome("a * b"), d = genome("a + b");
+  cache.evaluate({&a, &b, &c, &d}, {1, 4, 3, 2});
+  EXPECT_EQ(inner.calls, 4);
+  // All four met again: only the two best (b: 4, c: 3) get fresh trials.
+  const auto out = cache.evaluate({&a, &b, &c, &d}, {100, 100, 100, 100});
+  EXPECT_EQ(out, (std::vector<double>{1, 52, 51.5, 2}));
+  EXPECT_EQ(cache.lastReevaluated(), 2);
+  EXPECT_EQ(cache.lastHits(), 2);
+  EXPECT_EQ(inner.calls, 6);
+}
+
 TEST(FitnessCache, ADivergedEvaluationIsFinal) {
   SeedScore inner;
   CachingEvaluator cache(inner, 1, 10);

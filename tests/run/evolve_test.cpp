@@ -46,6 +46,15 @@ TEST(Evolve, WritesTheResultsDirectory) {
   const auto validation = readText(dir + "/validation.csv");
   EXPECT_EQ(std::count(validation.begin(), validation.end(), '\n'), 12);
   EXPECT_NE(validation.find(",original,"), std::string::npos);
+  // The complexity front, and the run directory as a stand-in for its best.features.
+  const auto front = runGpfd("features show " + dir + " --front");
+  EXPECT_EQ(front.status, 0) << front.output;
+  EXPECT_NE(front.output.find("validated (mean +- SE)"), std::string::npos);
+  const auto frontCsv = readText(dir + "/front.csv");
+  EXPECT_EQ(std::count(front.output.begin(), front.output.end(), '\n'),
+            std::count(frontCsv.begin(), frontCsv.end(), '\n'));
+  EXPECT_EQ(runGpfd("features show " + dir).status, 0);
+  EXPECT_EQ(runGpfd("features show " + dir + "/best.features --front").status, 2);
   // The resolved config reads back as a config.
   const auto againDir = freshDir("evolve-files-again");
   const auto again = runGpfd("evolve " + dir + "/config.toml --quiet --out " + againDir);

@@ -30,8 +30,11 @@ class CachingEvaluator final : public Evaluator {
  public:
   // One evaluation by `inner` is the mean of `trialsPerEvaluation` trials. `maxTrials` caps the
   // trials a genome accumulates through re-evaluation; 0 turns re-evaluation off (a genome keeps
-  // its first fitness). InputError unless maxTrials is 0 or at least trialsPerEvaluation.
-  CachingEvaluator(Evaluator& inner, int trialsPerEvaluation, int maxTrials);
+  // its first fitness). At most `maxReevaluations` genomes are re-evaluated per evaluate() call,
+  // those with the best mean first (they decide selection and the hall of fame); -1: no limit.
+  // InputError unless maxTrials is 0 or at least trialsPerEvaluation.
+  CachingEvaluator(Evaluator& inner, int trialsPerEvaluation, int maxTrials,
+                   int maxReevaluations = -1);
   std::vector<double> evaluate(const std::vector<const expr::Genome*>& genomes,
                                const std::vector<std::uint64_t>& seeds) override;
 
@@ -51,6 +54,7 @@ class CachingEvaluator final : public Evaluator {
   Evaluator& inner_;
   int trialsPerEvaluation_;
   int maxTrials_;
+  int maxReevaluations_;
   std::map<std::string, FitnessRecord> entries_;
   int lastEvaluated_ = 0;
   int lastReevaluated_ = 0;

@@ -34,6 +34,8 @@ struct ExperimentConfig {
   // Cap on the trials a genome accumulates: one met again gets K fresh trials until it has this
   // many, its fitness the mean over all of them. 0: no re-evaluation (the first K decide).
   int maxTrials = 0;
+  // At most this share of the population is re-evaluated per generation, best fitness first.
+  double reevaluationShare = 0.1;
   TrialMeasure measure = TrialMeasure::Mean;
   double lastFraction = 0.25;
   bool withOriginal = false;  // The learner sees discovered + original variables.

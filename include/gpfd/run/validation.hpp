@@ -79,10 +79,15 @@ std::size_t originalIndex(const std::vector<ValidatedSet>& sets);
 // validation.csv: every set, best mean first, with its comparison to the original variables.
 std::string formatValidationCsv(const std::vector<ValidatedSet>& sets,
                                 const std::vector<std::string>& stateNames);
-// front.csv: the best validated set at each size, smallest first; a row only where the mean
-// beats every smaller set.
+// The complexity front: indices of the best validated set at each size, smallest first; a set
+// is on it only where its mean beats every smaller set's.
+std::vector<std::size_t> frontIndices(const std::vector<ValidatedSet>& sets, std::size_t stateDim);
+// front.csv: the front's sets with their scores and expressions.
 std::string formatFrontCsv(const std::vector<ValidatedSet>& sets,
                            const std::vector<std::string>& stateNames);
+// The front as a text table for the terminal.
+std::string formatFrontTable(const std::vector<ValidatedSet>& sets,
+                             const std::vector<std::string>& stateNames);
 
 // The features file of the validation winner (`prepared`: the genome as the learner sees it,
 // e.g. normalised), with `# validated`, `# original` and `# verdict` lines.
