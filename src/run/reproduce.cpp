@@ -422,6 +422,61 @@ io::Report runFigure(const std::string& figure, Experiment& e, const ReproduceOp
                    "Approximate lambda-policy iteration on Tetris (12 rows, 8 columns).", false);
 }
 
+// One row per benchmark with method-level results in the output directory (and the baseline's).
+std::vector<std::vector<std::string>> methodSummaryTable(const ReproduceOptions& o) {
+  std::vector<std::string> header{
+      "benchmark",      "runs",       "original (final)",    "median change",
+      "better / worse", "Wilcoxon p", "area: median change", "area: Wilcoxon p"};
+  if (!o.baselineDir.empty()) {
+    header.insert(header.end(), {"baseline: median change", "baseline: better / worse",
+                                 "baseline: Wilcoxon p", "vs baseline: Mann-Whitney p"});
+  }
+  std::vector<std::vector<std::string>> rows{header};
+  for (const auto& figure : kFigures) {
+    const std::string dir = o.outDir + "/" + figure;
+    if (!fs::is_directory(dir)) continue;
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::directory_iterator(dir)) {
+      const auto name = entry.path().filename().string();
+      if (name.starts_with("method-") && name.ends_with(".csv")) files.push_back(entry.path());
+    }
+    std::sort(files.begin(), files.end());
+    for (const auto& file : files) {
+      Summary originalFinal, originalArea;
+      const auto runs =
+          parseMethodCsv(readFile(file.string()), file.string(), originalFinal, originalArea);
+      const auto v = methodVerdict(runs, originalFinal, originalArea);
+      const std::string name = file.stem().string().substr(7);
+      std::vector<std::string> row{
+          name,
+          std::to_string(v.runs),
+          fmt::format("{:.4g}", originalFinal.mean),
+          fmt::format("{:+.4g} ({:+.1f}%)", v.final.median,
+                      100.0 * v.final.median / std::fabs(originalFinal.mean)),
+          fmt::format("{} / {}", v.betterFinal, v.worseFinal),
+          fmt::format("{:.3g}", v.final.p),
+          fmt::format("{:+.4g}", v.area.median),
+          fmt::format("{:.3g}", v.area.p)};
+      if (!o.baselineDir.empty()) {
+        const auto base = baselineVerdict(o, figure, name);
+        if (base) {
+          row.insert(
+              row.end(),
+              {fmt::format("{:+.4g}", base->final.median),
+               fmt::format("{} / {}", base->betterFinal, base->worseFinal),
+               fmt::format("{:.3g}", base->final.p),
+               fmt::format("{:.3g}",
+                           compare(v.finalDifferences, base->finalDifferences).mannWhitneyP)});
+        } else {
+          row.insert(row.end(), {"-", "-", "-", "-"});
+        }
+      }
+      rows.push_back(row);
+    }
+  }
+  return rows;
+}
+
 }  // namespace
 
 void reproduce(const std::vector<std::string>& figures, const ReproduceOptions& o) {
@@ -454,6 +509,20 @@ void reproduce(const std::vector<std::string>& figures, const ReproduceOptions& 
       "SVG) and GP runs are in its directory; `config.toml` in each GP run is the fully resolved "
       "config.",
       o.version, o.revision));
+  const auto summary = methodSummaryTable(o);
+  if (summary.size() > 1) {
+    report.heading("Method-level summary", 2);
+    report.paragraph(fmt::format(
+        "Per benchmark, over its GP runs ({} per benchmark in this reproduction): the median "
+        "change of the returned features' final performance against the original variables (long "
+        "assessment), how many runs are significantly better or worse (Welch p < 0.05), and "
+        "Wilcoxon's signed-rank test over the runs' mean differences{}.",
+        o.gpRuns,
+        o.baselineDir.empty() ? ""
+                              : "; then the same for the baseline " + o.baselineDir +
+                                    " and a Mann-Whitney test of the two sets of changes"));
+    report.table(summary);
+  }
   for (const auto& figure : kFigures) {
     const std::string path = o.outDir + "/" + figure + "/section.json";
     if (fs::exists(path)) report.append(io::Report::fromJson(readFile(path)));
