@@ -75,7 +75,7 @@ def _env_overrides(env: Any, env_kwargs: dict | None) -> tuple[list[str], user_e
         if env_kwargs:
             raise TypeError("env_kwargs needs env=")
         return [], None
-    if isinstance(env, str) and env in _core.env_names():
+    if isinstance(env, str) and user_env.is_builtin(env):
         if env_kwargs:
             raise TypeError(
                 f"{env} is gpfd's own environment: give its parameters with "
@@ -136,7 +136,7 @@ def evolve(
         if seed is not None or population is not None or set is not None:
             raise TypeError("resume continues with the stored config; only generations may change")
         stored = tomllib.loads(Path(resume, "config.toml").read_text())["env"]["name"]
-        if stored not in _core.env_names():
+        if not user_env.is_builtin(stored):
             if evaluator is None:
                 raise TypeError(f"the run in {resume} is on {stored}: give env= to resume it")
             user_env.register(stored, evaluator.factory)

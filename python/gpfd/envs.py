@@ -139,7 +139,9 @@ class GpfdEnv(gym.Env):
 
 def register_all() -> None:
     """Registers every gpfd environment with Gymnasium (idempotent)."""
-    for name in _core.env_names():
+    from gpfd.user_env import is_builtin
+
+    for name in filter(is_builtin, _core.env_names()):
         env_id = gym_id(name)
         if env_id in gym.registry:
             continue

@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from gpfd import _core
+from gpfd.user_env import is_builtin
 
 
 def expectation(env: Any, variables: Any, params: dict) -> tuple[str, list | None, list | None]:
@@ -20,7 +21,7 @@ def expectation(env: Any, variables: Any, params: dict) -> tuple[str, list | Non
             raise TypeError(f"environment parameters {sorted(params)} need env=")
         return "", names, None
     if isinstance(env, str):
-        if env in _core.env_names():
+        if is_builtin(env):
             own = list(_core.EnvBatch(env, params).state_names)
             return (env, names or own, None) if params else (env, names, own)
         if params:

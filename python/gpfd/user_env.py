@@ -34,6 +34,11 @@ class EnvError(RuntimeError):
 _factories: dict[str, Callable[[], gym.Env]] = {}
 
 
+def is_builtin(name: str) -> bool:
+    """Whether `name` is one of gpfd's own (C++) environments, not one registered from Python."""
+    return name in _core.env_names() and name not in _factories
+
+
 def state_names(space: spaces.Space) -> list[str]:
     """x0 .. x{d-1} for a Box observation space of d values; TypeError for any other space."""
     if not isinstance(space, spaces.Box):

@@ -4,6 +4,7 @@
 // GIL only while it calls Python.
 #include <fmt/format.h>
 #include <nanobind/stl/string.h>
+#include <nanobind/stl/vector.h>
 
 #include <vector>
 
