@@ -52,6 +52,15 @@ def state_names(space: spaces.Space) -> list[str]:
 def resolve(env: str | Callable[[], gym.Env], env_kwargs: dict | None) -> tuple[str, Callable]:
     """(registry name, factory) for a Gymnasium id or a callable returning an environment."""
     if isinstance(env, str):
+        if ":" not in env:  # "module:Id" imports the module first: gymnasium.make checks it.
+            try:
+                gym.spec(env)
+            except gym.error.Error as e:
+                builtin = ", ".join(filter(is_builtin, _core.env_names()))
+                raise _core.InputError(
+                    f"unknown environment {env!r}: neither gpfd's ({builtin}) nor a Gymnasium "
+                    f"id ({e})"
+                ) from None
         return env, functools.partial(gym.make, env, **(env_kwargs or {}))
     if not callable(env):
         raise TypeError(f"env must be a name, a Gymnasium id or a callable, not {type(env).__name__}")

@@ -43,12 +43,13 @@ def _check(env, features: FeatureSet, space: spaces.Space) -> None:
         )
 
 
-class FeatureObservation(gym.ObservationWrapper):
+class FeatureObservation(gym.ObservationWrapper, gym.utils.RecordConstructorArgs):
     """Observations become ``features(obs)`` (float64), followed by the original observation when
     ``with_original``: what gpfd's learners see in discovery."""
 
     def __init__(self, env: gym.Env, features: FeatureSet, with_original: bool = False):
-        super().__init__(env)
+        gym.utils.RecordConstructorArgs.__init__(self, features=features, with_original=with_original)
+        gym.ObservationWrapper.__init__(self, env)
         _check(env, features, env.observation_space)
         self.features = features
         self.with_original = with_original

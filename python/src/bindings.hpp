@@ -25,6 +25,14 @@ nb::ndarray<nb::numpy, T> newArray(std::initializer_list<std::size_t> shape) {
   return nb::ndarray<nb::numpy, T>(data, shape.size(), shape.begin(), owner);
 }
 
+// str(value), as Python prints it.
+inline std::string pyText(nb::handle value) {
+  return nb::cast<std::string>(nb::steal<nb::str>(PyObject_Str(value.ptr())));
+}
+
+// The numpy module (imported once by Python, then a dictionary look-up).
+inline nb::module_ numpy() { return nb::module_::import_("numpy"); }
+
 // Environment parameters given as Python keywords, as the text the registry reads: str as is,
 // bool as true/false, int and float in shortest round-trip form. TypeError for anything else.
 env::Params paramsFromDict(const nb::dict& values, const std::string& where);

@@ -41,9 +41,9 @@ std::vector<double> oneAction(const EnvBatch& batch, nb::handle action) {
     values[0] = nb::cast<double>(nb::float_(action));
     return values;
   }
-  static nb::object numpy = nb::module_::import_("numpy");
+  const nb::module_ np = numpy();
   const auto array = nb::cast<ReadArray>(
-      numpy.attr("ascontiguousarray")(action, "dtype"_a = numpy.attr("float64")).attr("ravel")());
+      np.attr("ascontiguousarray")(action, "dtype"_a = np.attr("float64")).attr("ravel")());
   if (array.size() != components) {
     throw InputError(fmt::format("an action has {} component{}, got {} values", components,
                                  components == 1 ? "" : "s", array.size()),

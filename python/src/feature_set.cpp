@@ -51,25 +51,23 @@ expr::FeaturesFile parseWithFallback(const std::string& text, const std::string&
   }
 }
 
-std::string typeName(nb::handle value) {
-  return nb::cast<std::string>(nb::str(value.type().attr("__name__")));
-}
+std::string typeName(nb::handle value) { return pyText(value.type().attr("__name__")); }
 
 // A float64 C-contiguous view of `obs`, without a copy when it already is one; other real dtypes
 // are converted (one copy). TypeError for non-numeric or complex data.
 ReadArray observations(nb::handle obs) {
   ReadArray view;
   if (nb::try_cast(obs, view, false)) return view;
-  static nb::object numpy = nb::module_::import_("numpy");
-  nb::object array = numpy.attr("asarray")(obs);
+  const nb::module_ np = numpy();
+  nb::object array = np.attr("asarray")(obs);
   const std::string kind = nb::cast<std::string>(array.attr("dtype").attr("kind"));
   if (kind != "f" && kind != "i" && kind != "u") {
     throw nb::type_error(
         fmt::format("FeatureSet: observations must be real numbers, got dtype {} ({})",
-                    nb::cast<std::string>(nb::str(array.attr("dtype"))), typeName(obs))
+                    pyText(array.attr("dtype")), typeName(obs))
             .c_str());
   }
-  array = numpy.attr("ascontiguousarray")(array, "dtype"_a = numpy.attr("float64"));
+  array = np.attr("ascontiguousarray")(array, "dtype"_a = np.attr("float64"));
   return nb::cast<ReadArray>(array);
 }
 

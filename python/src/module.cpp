@@ -56,20 +56,20 @@ void bindRegistry(nb::module_& m) {
 env::Params paramsFromDict(const nb::dict& values, const std::string& where) {
   env::Params params;
   for (auto [key, value] : values) {
-    const std::string name = nb::cast<std::string>(nb::str(key));
+    const std::string name = pyText(key);
     std::string text;
     if (nb::isinstance<nb::bool_>(value)) {
       text = nb::cast<bool>(value) ? "true" : "false";
     } else if (nb::isinstance<nb::str>(value)) {
       text = nb::cast<std::string>(value);
     } else if (PyIndex_Check(value.ptr())) {  // int, numpy integers
-      text = nb::cast<std::string>(nb::str(nb::int_(value)));
+      text = pyText(nb::int_(value));
     } else if (PyFloat_Check(value.ptr()) || nb::hasattr(value, "__float__")) {
       text = env::numberText(nb::cast<double>(nb::float_(value)));
     } else {
       throw nb::type_error(
           fmt::format("{}: parameter '{}' must be a number, a bool or a string, not {}", where,
-                      name, nb::cast<std::string>(nb::str(value.type().attr("__name__"))))
+                      name, pyText(value.type().attr("__name__")))
               .c_str());
     }
     params[name] = text;
