@@ -71,13 +71,13 @@ void EnvBatch::reset(const bool* mask, double* obs) {
 }
 
 void EnvBatch::checkAction(std::size_t i, const double* action) const {
-  const std::string where = fmt::format("action of environment {}", i);
+  const auto where = [i] { return fmt::format("action of environment {}", i); };
   switch (kind_) {
     case ActionKind::Discrete:
       if (!isWholeNumber(action[0]) || action[0] < 0 || action[0] >= space_.choices) {
         throw InputError(fmt::format("a discrete action is an integer in 0..{}, got {}",
                                      space_.choices - 1, action[0]),
-                         where);
+                         where());
       }
       break;
     case ActionKind::Tetris:
@@ -87,7 +87,7 @@ void EnvBatch::checkAction(std::size_t i, const double* action) const {
               fmt::format("Tetris actions are (orientation, column), non-negative integers; got "
                           "({}, {})",
                           action[0], action[1]),
-              where);
+              where());
         }
       }
       break;
