@@ -11,6 +11,8 @@ from gpfd.wrappers import FeatureObservation, VectorFeatureObservation
 FEATURES = gpfd.FeatureSet.parse("th * dth\nsin(x) - dx / 2\nth\n", env="cartpole")
 
 
+@pytest.mark.filterwarnings("ignore:.*different from the unwrapped version")
+@pytest.mark.filterwarnings("ignore:.*For Box action spaces, we recommend")
 def test_the_observation_is_the_features_of_the_state():
     env = FeatureObservation(gym.make("gpfd/CartPole-v0"), FEATURES)
     assert env.observation_space.shape == (3,) and env.observation_space.dtype == np.float64
