@@ -13,7 +13,8 @@ Usage, with the package installed (scripts/test installs it in .venv):
 3. The cost of one fitness evaluation (GP's short learning trials) on cart-pole built in (stepped
    in C++), on gpfd's cart-pole stepped in Python through Gymnasium (gpfd/CartPole-v0), and on
    Gymnasium's CartPole-v1.
-Every figure is the median of 3 repetitions.
+Every figure is the median of 3 repetitions, timed in CPU seconds of this process (everything
+here runs on one thread), so that other jobs on the machine disturb it less than wall time.
 """
 
 import argparse
@@ -40,18 +41,17 @@ def median_rate(measure):
     return statistics.median(rates)
 
 
-def single_env_rate(make, steps, actions):
-    env = make()
+def single_env_rate(env, steps, actions):
     picks = np.random.default_rng(0).integers(0, actions, size=steps)
 
     def measure():
         env.reset(seed=0)
-        start = time.perf_counter()
+        start = time.process_time()
         for a in picks:
             _, _, terminated, truncated, _ = env.step(int(a))
             if terminated or truncated:
                 env.reset()
-        return steps, time.perf_counter() - start
+        return steps, time.process_time() - start
 
     return median_rate(measure)
 
@@ -62,10 +62,10 @@ def vector_env_rate(envs, steps):
 
     def measure():
         envs.reset(seed=0)
-        start = time.perf_counter()
+        start = time.process_time()
         for a in picks:
             envs.step(a)
-        return steps * envs.num_envs, time.perf_counter() - start
+        return steps * envs.num_envs, time.process_time() - start
 
     return median_rate(measure)
 
@@ -78,21 +78,35 @@ def environments(scale):
         ("Acrobot", "gpfd/Acrobot-v0", "Acrobot-v1", 3),
     ]:
         kwargs = {"actions": "discrete", "max_steps": 500}
-        ours = single_env_rate(lambda: gym.make(ours_id, **kwargs), 20000 * scale, actions)
-        theirs = single_env_rate(lambda: gym.make(theirs_id), 20000 * scale // 4, actions)
-        print(f"{task:<10} {'one env (gymnasium.make)':<28} {ours:>12,.0f} {theirs:>12,.0f} "
-              f"{ours / theirs:>6.1f}x")
+        ours = single_env_rate(gym.make(ours_id, **kwargs), 20000 * scale, actions)
+        theirs = single_env_rate(gym.make(theirs_id), 20000 * scale // 4, actions)
+        print(
+            f"{task:<10} {'one env (gymnasium.make)':<28} {ours:>12,.0f} {theirs:>12,.0f} "
+            f"{ours / theirs:>6.1f}x"
+        )
         n = 64
         ours = vector_env_rate(gym.make_vec(ours_id, num_envs=n, **kwargs), 2000 * scale)
         sync = gym.make_vec(theirs_id, num_envs=n, vectorization_mode="sync")
         theirs = vector_env_rate(sync, 200 * scale)
-        print(f"{task:<10} {f'N = {n}: vs SyncVectorEnv':<28} {ours:>12,.0f} {theirs:>12,.0f} "
-              f"{ours / theirs:>6.1f}x")
+        print(
+            f"{task:<10} {f'N = {n}: vs SyncVectorEnv':<28} {ours:>12,.0f} {theirs:>12,.0f} "
+            f"{ours / theirs:>6.1f}x"
+        )
         if task == "CartPole":
             numpy_vec = gym.make_vec(theirs_id, num_envs=n, vectorization_mode="vector_entry_point")
             theirs = vector_env_rate(numpy_vec, 2000 * scale)
-            print(f"{task:<10} {f'N = {n}: vs its NumPy vector env':<28} {ours:>12,.0f} "
-                  f"{theirs:>12,.0f} {ours / theirs:>6.1f}x")
+            print(
+                f"{task:<10} {f'N = {n}: vs its NumPy vector env':<28} {ours:>12,.0f} "
+                f"{theirs:>12,.0f} {ours / theirs:>6.1f}x"
+            )
+
+
+def calls_rate(function, x, calls, n):
+    """(states, CPU seconds) of `calls` calls of function(x) on n states."""
+    start = time.process_time()
+    for _ in range(calls):
+        function(x)
+    return calls * n, time.process_time() - start
 
 
 def feature_sets(scale):
@@ -105,30 +119,20 @@ def feature_sets(scale):
     def as_matrix(x):
         return np.stack(np.broadcast_arrays(*numpy_features(x)), axis=-1)
 
-    size = sum(line.count("(") for line in fs.show().splitlines())
-    print(f"\n2. FeatureSet: {fs.n_features} features of the 5-segment swimmer ({path.name} of "
-          f"Figure 6, {fs.input_dim} variables), states per second")
+    print(
+        f"\n2. FeatureSet: {fs.n_features} features of the 5-segment swimmer ({path.name} of "
+        f"Figure 6, {fs.input_dim} variables), states per second"
+    )
     print(f"{'states per call':<16} {'FeatureSet':>14} {'NumPy export':>14} {'ratio':>7}")
     rng = np.random.default_rng(0)
     for n, calls in [(1, 20000 * scale), (4096, 50 * scale)]:
         x = rng.normal(size=(n, fs.input_dim)) if n > 1 else rng.normal(size=fs.input_dim)
         assert np.array_equal(fs(x), as_matrix(x))  # The same values, bit for bit.
 
-        def ours():
-            start = time.perf_counter()
-            for _ in range(calls):
-                fs(x)
-            return calls * n, time.perf_counter() - start
-
-        def theirs():
-            start = time.perf_counter()
-            for _ in range(max(1, calls // 10)):
-                as_matrix(x)
-            return max(1, calls // 10) * n, time.perf_counter() - start
-
-        a, b = median_rate(ours), median_rate(theirs)
+        a = median_rate(lambda f=fs, x=x, k=calls, n=n: calls_rate(f, x, k, n))
+        fewer = max(1, calls // 10)  # NumPy is slower: fewer calls for the same time.
+        b = median_rate(lambda f=as_matrix, x=x, k=fewer, n=n: calls_rate(f, x, k, n))
         print(f"{n:<16} {a:>14,.0f} {b:>14,.0f} {a / b:>6.1f}x")
-    del size
 
 
 def fitness_cost(scale):
@@ -140,22 +144,34 @@ def fitness_cost(scale):
 
     def per_evaluation(run):
         def measure():
-            start = time.perf_counter()
+            start = time.process_time()
             for seed in seeds:
                 run(seed)
-            return len(seeds), time.perf_counter() - start
+            return len(seeds), time.process_time() - start
+
         return 1.0 / median_rate(measure)
 
     cases = [
         ("cartpole built in (C++)", lambda s: gpfd.fitness(raw, set=builtin, seed=s)),
-        ("gpfd/CartPole-v0 stepped in Python",
-         lambda s: gpfd.fitness(python_raw, env="gpfd/CartPole-v0", set=settings, seed=s,
-                                env_kwargs={"actions": "discrete", "max_steps": 500})),
-        ("Gymnasium CartPole-v1 (Python)",
-         lambda s: gpfd.fitness(python_raw, env="CartPole-v1", set=settings, seed=s)),
+        (
+            "gpfd/CartPole-v0 stepped in Python",
+            lambda s: gpfd.fitness(
+                python_raw,
+                env="gpfd/CartPole-v0",
+                set=settings,
+                seed=s,
+                env_kwargs={"actions": "discrete", "max_steps": 500},
+            ),
+        ),
+        (
+            "Gymnasium CartPole-v1 (Python)",
+            lambda s: gpfd.fitness(python_raw, env="CartPole-v1", set=settings, seed=s),
+        ),
     ]
-    print("\n3. one fitness evaluation: 3 trials x 11 batches of 10 episodes, raw variables, "
-          "policy gradient (cartpole-quick's learner)")
+    print(
+        "\n3. one fitness evaluation: 3 trials x 11 batches of 10 episodes, raw variables, "
+        "policy gradient (cartpole-quick's learner)"
+    )
     base = None
     for name, run in cases:
         seconds = per_evaluation(run)
@@ -169,8 +185,10 @@ def main():
     args = parser.parse_args()
     warnings.filterwarnings("ignore")
     scale = 1 if args.quick else 10
-    print(f"gpfd {gpfd.__version__}, Gymnasium {gym.__version__}, NumPy {np.__version__}; "
-          f"median of {REPEATS}\n")
+    print(
+        f"gpfd {gpfd.__version__}, Gymnasium {gym.__version__}, NumPy {np.__version__}; "
+        f"median of {REPEATS}, CPU time\n"
+    )
     environments(scale)
     feature_sets(scale)
     fitness_cost(max(1, scale // 5))

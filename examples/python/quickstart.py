@@ -37,7 +37,7 @@ def reinforce(env: gym.Env, episodes: int, rng: np.random.Generator) -> list[flo
     weights = np.zeros((env.action_space.n, dim))
     scale = np.ones(dim)  # Running scale of each input, so that one step size fits all features.
     returns = []
-    for episode in range(episodes):
+    for _ in range(episodes):
         obs, _ = env.reset(seed=int(rng.integers(2**31)))
         inputs, actions, rewards = [], [], []
         done = False
@@ -57,7 +57,7 @@ def reinforce(env: gym.Env, episodes: int, rng: np.random.Generator) -> list[flo
         returns.append(sum(rewards))
         baseline = np.mean(returns[-20:])
         to_go = np.cumsum(rewards[::-1])[::-1]
-        for x, a, g in zip(inputs, actions, to_go):
+        for x, a, g in zip(inputs, actions, to_go, strict=True):
             logits = weights @ x
             p = np.exp(logits - logits.max())
             p /= p.sum()
@@ -73,8 +73,10 @@ def main() -> None:
     env = FeatureObservation(gym.make("CartPole-v1"), features)
     print(f"wrapped CartPole-v1: observations {env.observation_space}")
     returns = reinforce(env, episodes=300, rng=np.random.default_rng(0))
-    print(f"REINFORCE on the features: mean return {np.mean(returns[:20]):.1f} over the first 20 "
-          f"episodes, {np.mean(returns[-20:]):.1f} over the last 20")
+    print(
+        f"REINFORCE on the features: mean return {np.mean(returns[:20]):.1f} over the first 20 "
+        f"episodes, {np.mean(returns[-20:]):.1f} over the last 20"
+    )
 
 
 if __name__ == "__main__":  # Needed: gpfd.evolve may start worker processes.

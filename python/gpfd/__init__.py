@@ -13,9 +13,9 @@ The core is gpfd's C++ library; this package is a thin front over it:
 docs/python.md in gpfd's repository is the guide.
 """
 
-from gpfd._core import FeatureSet, InputError, __version__
 from gpfd import envs as _envs
 from gpfd import wrappers
+from gpfd._core import FeatureSet, InputError, __version__
 from gpfd.discovery import Run, assess, builtin_configs, evolve, fitness, load_run
 from gpfd.user_env import EnvError
 

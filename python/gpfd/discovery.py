@@ -12,9 +12,10 @@ import json
 import math
 import os
 import sys
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Callable, Iterable, Mapping
+from typing import Any
 
 import numpy as np
 
@@ -68,7 +69,9 @@ def _overrides(settings: Mapping[str, Any] | Iterable[str] | None) -> list[str]:
     return [str(s) for s in settings]
 
 
-def _env_overrides(env: Any, env_kwargs: dict | None) -> tuple[list[str], user_env.Evaluator | None]:
+def _env_overrides(
+    env: Any, env_kwargs: dict | None
+) -> tuple[list[str], user_env.Evaluator | None]:
     """The overrides that select `env`, and for an environment stepped in Python its evaluator
     (not yet started)."""
     if env is None:
@@ -110,7 +113,7 @@ def evolve(
     resume: str | os.PathLike | None = None,
     env_kwargs: dict[str, Any] | None = None,
     verbose: bool = False,
-) -> "Run":
+) -> Run:
     """Discovers features with GP, exactly as ``gpfd evolve`` does, and returns the run.
 
     config: a TOML file or a shipped config name (default ``cartpole-quick``).
@@ -190,7 +193,9 @@ def fitness(
     overrides += _overrides(set)
     if not isinstance(features, FeatureSet):
         features = FeatureSet.load(os.fspath(features))
-    return _core.fitness("" if config is None else os.fspath(config), overrides, features, int(seed))
+    return _core.fitness(
+        "" if config is None else os.fspath(config), overrides, features, int(seed)
+    )
 
 
 def _table(columns: dict[str, list], as_frame: bool | None) -> Any:
@@ -206,10 +211,24 @@ def _table(columns: dict[str, list], as_frame: bool | None) -> Any:
     return pandas.DataFrame(arrays)
 
 
-_SUMMARY_COLUMNS = (
-    "set runs mean_final std ci95 diverged welch_t welch_p mann_whitney_u mann_whitney_p cohen_d "
-    "a12 mean_area area_ci95 area_welch_p area_mann_whitney_p"
-).split()
+_SUMMARY_COLUMNS = [
+    "set",
+    "runs",
+    "mean_final",
+    "std",
+    "ci95",
+    "diverged",
+    "welch_t",
+    "welch_p",
+    "mann_whitney_u",
+    "mann_whitney_p",
+    "cohen_d",
+    "a12",
+    "mean_area",
+    "area_ci95",
+    "area_welch_p",
+    "area_mann_whitney_p",
+]
 
 
 def assess(

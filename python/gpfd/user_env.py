@@ -1,4 +1,4 @@
-"""Your own Gymnasium environment in gpfd's discovery: stepped in Python, trials in worker processes.
+"""Your own Gymnasium environment in gpfd's discovery: stepped in Python, in worker processes.
 
 ``gpfd.evolve(env=...)`` takes a Gymnasium id (``"MountainCarContinuous-v0"``) or a callable that
 returns a Gymnasium environment. The environment needs a Box observation space (its observation,
@@ -15,7 +15,8 @@ import functools
 import math
 import multiprocessing
 import os
-from typing import Any, Callable
+from collections.abc import Callable
+from typing import Any
 
 import cloudpickle
 import gymnasium as gym
@@ -63,7 +64,9 @@ def resolve(env: str | Callable[[], gym.Env], env_kwargs: dict | None) -> tuple[
                 ) from None
         return env, functools.partial(gym.make, env, **(env_kwargs or {}))
     if not callable(env):
-        raise TypeError(f"env must be a name, a Gymnasium id or a callable, not {type(env).__name__}")
+        raise TypeError(
+            f"env must be a name, a Gymnasium id or a callable, not {type(env).__name__}"
+        )
     if env_kwargs:
         env = functools.partial(env, **env_kwargs)
     target = env.func if isinstance(env, functools.partial) else env
@@ -76,7 +79,7 @@ def register(name: str, factory: Callable[[], gym.Env]) -> None:
     _core.register_python_env(name, "a Gymnasium environment stepped in Python")
 
 
-def make_adapter(name: str) -> "Adapter":
+def make_adapter(name: str) -> Adapter:
     """Called by gpfd's registry (C++) for each new instance."""
     try:
         env = _factories[name]()
@@ -131,8 +134,11 @@ class Adapter:
                 "of an episode)"
             ) from e
         self._steps += 1
-        return self._observation(obs, f"step {self._steps}"), float(reward), bool(terminated), bool(
-            truncated
+        return (
+            self._observation(obs, f"step {self._steps}"),
+            float(reward),
+            bool(terminated),
+            bool(truncated),
         )
 
     def _observation(self, obs: Any, where: str) -> np.ndarray:
@@ -178,7 +184,9 @@ class Evaluator:
             return [_core.trial_fitness(config_text, genome, seed) for genome, seed in tasks]
         if self._pool is None:
             # forkserver: workers do not inherit this process' threads (oneTBB's) or state.
-            method = "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() else "spawn"
+            method = (
+                "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() else "spawn"
+            )
             context = multiprocessing.get_context(method)
             self._pool = context.Pool(
                 self.workers, _init_worker, (self.name, cloudpickle.dumps(self.factory))

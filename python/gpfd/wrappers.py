@@ -27,7 +27,9 @@ def _check(env, features: FeatureSet, space: spaces.Space) -> None:
     base = env.unwrapped
     if hasattr(base, "gpfd_name"):
         if features.env and features.env != base.gpfd_name:
-            raise TypeError(f"the features are for {features.env}, the environment is {base.gpfd_name}")
+            raise TypeError(
+                f"the features are for {features.env}, the environment is {base.gpfd_name}"
+            )
         if list(base.state_names) != list(features.variables):
             raise TypeError(
                 f"the features read {', '.join(features.variables)}; the environment's "
@@ -48,7 +50,9 @@ class FeatureObservation(gym.ObservationWrapper, gym.utils.RecordConstructorArgs
     ``with_original``: what gpfd's learners see in discovery."""
 
     def __init__(self, env: gym.Env, features: FeatureSet, with_original: bool = False):
-        gym.utils.RecordConstructorArgs.__init__(self, features=features, with_original=with_original)
+        gym.utils.RecordConstructorArgs.__init__(
+            self, features=features, with_original=with_original
+        )
         gym.ObservationWrapper.__init__(self, env)
         _check(env, features, env.observation_space)
         self.features = features

@@ -11,36 +11,62 @@ from conftest import QUICK
 # Settings per config that make a run of 8 x 3 take about a second.
 SETTINGS = {
     "cartpole-quick": QUICK,
-    "tetris-quick": {"learner.params.iterations": 2, "learner.params.games": 3, "fitness.trials": 2},
+    "tetris-quick": {
+        "learner.params.iterations": 2,
+        "learner.params.games": 3,
+        "fitness.trials": 2,
+    },
 }
 
 
 def run_cli(cli, *args, cwd=None):
-    return subprocess.run([cli, *map(str, args)], check=True, capture_output=True, text=True,
-                          cwd=cwd)
+    return subprocess.run(
+        [cli, *map(str, args)], check=True, capture_output=True, text=True, cwd=cwd
+    )
 
 
 def without_seconds(text):
     return [line.rsplit(",", 1)[0] for line in text.splitlines()]
 
 
-@pytest.mark.parametrize("config,env,threads", [("cartpole-quick", None, 2),
-                                                ("cartpole-quick", "acrobot", 1),
-                                                ("tetris-quick", None, 2)])
+@pytest.mark.parametrize(
+    "config,env,threads",
+    [("cartpole-quick", None, 2), ("cartpole-quick", "acrobot", 1), ("tetris-quick", None, 2)],
+)
 def test_evolve_equals_gpfd_evolve(cli, tmp_path, config, env, threads):
     settings = SETTINGS[config]
-    cli_args = ["evolve", config, "--seed", 5, "--out", tmp_path / "cli", "--quiet",
-                "--population", 8, "--generations", 3]
+    cli_args = [
+        "evolve",
+        config,
+        "--seed",
+        5,
+        "--out",
+        tmp_path / "cli",
+        "--quiet",
+        "--population",
+        8,
+        "--generations",
+        3,
+    ]
     cli_args += [f"--set={k}={v}" for k, v in settings.items()]
     if env:
         cli_args += ["--env", env]
     run_cli(cli, *cli_args)
-    run = gpfd.evolve(config, env=env, seed=5, population=8, generations=3, threads=threads,
-                      set=settings, out=tmp_path / "py")
+    run = gpfd.evolve(
+        config,
+        env=env,
+        seed=5,
+        population=8,
+        generations=3,
+        threads=threads,
+        set=settings,
+        out=tmp_path / "py",
+    )
     for name in ["best.features", "config.toml", "best/generation-0002.features"]:
         assert (tmp_path / "py" / name).read_text() == (tmp_path / "cli" / name).read_text(), name
     assert without_seconds((tmp_path / "py/generations.csv").read_text()) == without_seconds(
-        (tmp_path / "cli/generations.csv").read_text())
+        (tmp_path / "cli/generations.csv").read_text()
+    )
     assert run.finished and run.generations == 3 and run.info["seed"] == 5
     assert run.best.to_text() == (tmp_path / "cli/best.features").read_text()
 
@@ -52,13 +78,27 @@ def test_callback_sees_each_generation_and_can_stop_the_run(tmp_path):
         seen.append(stats)
         return stats["generation"] == 1
 
-    run = gpfd.evolve(seed=2, population=8, generations=5, set=QUICK, out=tmp_path / "run",
-                      callback=callback)
+    run = gpfd.evolve(
+        seed=2, population=8, generations=5, set=QUICK, out=tmp_path / "run", callback=callback
+    )
     assert [s["generation"] for s in seen] == [0, 1]
-    assert set(seen[0]) == {"generation", "best", "mean", "median", "mean_size", "mean_features",
-                            "evaluations", "cache_hits", "seconds", "best_features"}
+    assert set(seen[0]) == {
+        "generation",
+        "best",
+        "mean",
+        "median",
+        "mean_size",
+        "mean_features",
+        "evaluations",
+        "cache_hits",
+        "seconds",
+        "best_features",
+    }
     assert isinstance(seen[1]["best_features"], gpfd.FeatureSet)
-    assert seen[1]["best_features"].to_text().splitlines()[-1] == run.best_of(1).to_text().splitlines()[-1]
+    assert (
+        seen[1]["best_features"].to_text().splitlines()[-1]
+        == run.best_of(1).to_text().splitlines()[-1]
+    )
     assert not run.finished and run.generations == 2
     # The stopped run continues exactly: same as an uninterrupted one.
     resumed = gpfd.evolve(resume=tmp_path / "run")
@@ -71,8 +111,9 @@ def test_a_callback_that_raises_stops_the_run_with_its_exception(tmp_path):
         raise KeyError("stop here")
 
     with pytest.raises(KeyError, match="stop here"):
-        gpfd.evolve(seed=2, population=8, generations=3, set=QUICK, out=tmp_path / "run",
-                    callback=callback)
+        gpfd.evolve(
+            seed=2, population=8, generations=3, set=QUICK, out=tmp_path / "run", callback=callback
+        )
     assert gpfd.load_run(tmp_path / "run").generations == 1  # Its checkpoint was written.
 
 
@@ -102,16 +143,31 @@ def test_fitness_is_the_fitness_gp_computed(tmp_path):
 def test_assess_returns_the_statistics_table(cli, tmp_path):
     features = tmp_path / "f.features"
     features.write_text("# env: cartpole\n# variables: x, dx, th, dth\nth + dth\nth * 2\n")
-    table = gpfd.assess(str(features), env="cartpole", runs=4, budget=5, seed=3,
-                        out=tmp_path / "py", as_frame=False)
+    table = gpfd.assess(
+        str(features), env="cartpole", runs=4, budget=5, seed=3, out=tmp_path / "py", as_frame=False
+    )
     assert list(table["set"]) == ["original", "f"]
     assert all(isinstance(v, np.ndarray) and len(v) == 2 for v in table.values())
-    run_cli(cli, "assess", "cartpole", "--features", features, "--runs", 4, "--budget", 5,
-            "--seed", 3, "--out", tmp_path / "cli", "--quiet")
+    run_cli(
+        cli,
+        "assess",
+        "cartpole",
+        "--features",
+        features,
+        "--runs",
+        4,
+        "--budget",
+        5,
+        "--seed",
+        3,
+        "--out",
+        tmp_path / "cli",
+        "--quiet",
+    )
     assert (tmp_path / "py/summary.csv").read_text() == (tmp_path / "cli/summary.csv").read_text()
     header, *rows = (tmp_path / "cli/summary.csv").read_text().splitlines()
     for i, row in enumerate(rows):
-        for key, cell in zip(header.split(","), row.split(",")):
+        for key, cell in zip(header.split(","), row.split(","), strict=True):
             if key != "set":
                 assert float(table[key][i]) == float(cell), key
     fs = gpfd.FeatureSet.load(str(features))

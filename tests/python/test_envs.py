@@ -29,13 +29,20 @@ def test_every_gpfd_environment_is_registered():
     for name in _core.env_names():
         assert gym_id(name) in gym.registry
     assert {gym_id(n) for n in ("acrobot", "cartpole", "swimmer", "tetris")} == {
-        "gpfd/Acrobot-v0", "gpfd/CartPole-v0", "gpfd/Swimmer-v0", "gpfd/Tetris-v0"}
+        "gpfd/Acrobot-v0",
+        "gpfd/CartPole-v0",
+        "gpfd/Swimmer-v0",
+        "gpfd/Tetris-v0",
+    }
 
 
 # The only warnings check_env may give: unbounded observations (the state variables have no
 # bounds; Gymnasium's CartPole has the same) and, for the wrapped environment, the wrappers.
-ACCEPTED = ("A Box observation space m", "For Box action spaces, we recommend",
-            "is different from the unwrapped version")
+ACCEPTED = (
+    "A Box observation space m",
+    "For Box action spaces, we recommend",
+    "is different from the unwrapped version",
+)
 
 
 @pytest.mark.parametrize("env_id,params", VARIANTS)
@@ -66,13 +73,18 @@ def test_keyword_values_reach_the_environment():
 
 
 def test_unknown_keywords_and_bad_values_are_refused():
-    with pytest.raises(TypeError, match=r"gpfd/CartPole-v0 got unknown keyword 'lenght'; its parameters are: gravity"):
+    with pytest.raises(
+        TypeError,
+        match=r"gpfd/CartPole-v0 got unknown keyword 'lenght'; its parameters are: gravity",
+    ):
         gym.make("gpfd/CartPole-v0", lenght=1.0)
     with pytest.raises(gpfd.InputError, match=r"\(swimmer.segments\)"):
         gym.make("gpfd/Swimmer-v0", segments=1)
     with pytest.raises(gpfd.InputError, match=r"tetris.state"):
         gym.make("gpfd/Tetris-v0", state="pixels")
-    with pytest.raises(TypeError, match="parameter 'dt' must be a number, a bool or a string, not list"):
+    with pytest.raises(
+        TypeError, match="parameter 'dt' must be a number, a bool or a string, not list"
+    ):
         gym.make("gpfd/CartPole-v0", dt=[0.1])
 
 
@@ -93,8 +105,12 @@ def test_seeding_follows_gymnasiums_rules():
 
 @pytest.mark.parametrize("name", ["acrobot", "cartpole", "swimmer", "tetris"])
 def test_a_seed_starts_where_gpfd_simulate_starts(cli, name):
-    csv = subprocess.run([cli, "simulate", name, "--seed", "7", "--policy", "random", "--steps", "1"],
-                         check=True, capture_output=True, text=True).stdout.splitlines()
+    csv = subprocess.run(
+        [cli, "simulate", name, "--seed", "7", "--policy", "random", "--steps", "1"],
+        check=True,
+        capture_output=True,
+        text=True,
+    ).stdout.splitlines()
     header, row0 = csv[0].split(","), csv[1].split(",")
     env = gym.make(gym_id(name))
     obs, _ = env.reset(seed=7)
@@ -138,7 +154,7 @@ def test_tetris_maps_actions_to_legal_placements():
     obs, *_ = env.step(np.array([3, 7]))
     orientations = int(mask.any(axis=1).sum())
     o = 3 % orientations
-    c = int(np.flatnonzero(mask[o]).max()) if 7 > np.flatnonzero(mask[o]).max() else 7
+    c = int(np.flatnonzero(mask[o]).max()) if np.flatnonzero(mask[o]).max() < 7 else 7
     assert np.array_equal(clone.step(np.array([o, c]))[0], obs)
     with pytest.raises(gpfd.InputError, match="non-negative integers"):
         env.step(np.array([-1, 0]))
@@ -150,9 +166,11 @@ def sync_of(env_id, n, **params):
 
 @pytest.mark.parametrize(
     "env_id,params",
-    [("gpfd/CartPole-v0", {"actions": "discrete", "max_steps": 60}),
-     ("gpfd/Acrobot-v0", {"max_steps": 40}),
-     ("gpfd/Tetris-v0", {"rows": 8, "cols": 6})],
+    [
+        ("gpfd/CartPole-v0", {"actions": "discrete", "max_steps": 60}),
+        ("gpfd/Acrobot-v0", {"max_steps": 40}),
+        ("gpfd/Tetris-v0", {"rows": 8, "cols": 6}),
+    ],
 )
 def test_vector_environment_equals_gymnasiums_sync_vector_env(env_id, params):
     n = 8
@@ -170,20 +188,25 @@ def test_vector_environment_equals_gymnasiums_sync_vector_env(env_id, params):
         action = theirs.action_space.sample()
         got = ours.step(action)
         want = theirs.step(action)
-        for x, y in zip(got[:4], want[:4]):
+        for x, y in zip(got[:4], want[:4], strict=True):
             assert np.array_equal(x, y)
         ended += int(np.sum(got[2] | got[3]))
     assert ended > 0  # Autoresets happened.
 
 
 def test_same_step_autoreset_reports_the_final_observation():
-    ours = gym.make_vec("gpfd/CartPole-v0", num_envs=4, actions="discrete", max_steps=5,
-                        autoreset_mode=AutoresetMode.SAME_STEP)
+    ours = gym.make_vec(
+        "gpfd/CartPole-v0",
+        num_envs=4,
+        actions="discrete",
+        max_steps=5,
+        autoreset_mode=AutoresetMode.SAME_STEP,
+    )
     assert ours.metadata["autoreset_mode"] == AutoresetMode.SAME_STEP
     ours.reset(seed=0)
     single = gym.make("gpfd/CartPole-v0", actions="discrete", max_steps=5)
     single.reset(seed=2)
-    for t in range(5):
+    for _ in range(5):
         obs, _, _, truncated, info = ours.step(np.ones(4, dtype=np.int64))
         last, *_ = single.step(1)
     assert truncated.all() and info["_final_obs"].all()

@@ -60,9 +60,7 @@ def test_show_and_export_match_the_command_line(cli, control_file):
         assert fs.show(fmt) == cli_text(cli, "features", "show", control_file, "--format", fmt)
     for fmt in ("c", "python", "latex", "sexpr"):
         assert fs.export(fmt) == cli_text(cli, "features", "export", control_file, "--format", fmt)
-    assert fs.show(simplify=True) == cli_text(
-        cli, "features", "show", control_file, "--simplify"
-    )
+    assert fs.show(simplify=True) == cli_text(cli, "features", "show", control_file, "--simplify")
 
 
 def test_values_are_bit_identical_to_the_command_lines_numpy_export(cli, control_file):
@@ -139,7 +137,9 @@ def test_out_receives_the_features(control_file):
     out = np.empty((32, 5))
     assert fs(x, out=out) is out
     assert np.array_equal(out, fs(x))
-    with pytest.raises(ValueError, match=r"out must be a writable C-contiguous float64 array of shape \(32, 5\)"):
+    with pytest.raises(
+        ValueError, match=r"out must be a writable C-contiguous float64 array of shape \(32, 5\)"
+    ):
         fs(x, out=np.empty((32, 4)))
     with pytest.raises(ValueError, match="out must be"):
         fs(x, out=np.empty((32, 5), dtype=np.float32))
@@ -151,7 +151,10 @@ def test_out_receives_the_features(control_file):
 )
 def test_wrong_shapes_are_refused(control_file, shape):
     fs = gpfd.FeatureSet.load(str(control_file))
-    with pytest.raises(ValueError, match=r"expected observations of shape \(4,\) or \(N, 4\) over th1, th2, dth1, dth2"):
+    with pytest.raises(
+        ValueError,
+        match=r"expected observations of shape \(4,\) or \(N, 4\) over th1, th2, dth1, dth2",
+    ):
         fs(np.zeros(shape))
 
 

@@ -25,17 +25,33 @@ def without_seconds(path):
 
 def test_a_gymnasium_id_evolves_for_two_generations_in_worker_processes(tmp_path):
     seen = []
-    run = gpfd.evolve(env="MountainCarContinuous-v0", seed=3, population=6, generations=2,
-                      set=TINY, threads=2, out=tmp_path / "two", callback=seen.append)
+    run = gpfd.evolve(
+        env="MountainCarContinuous-v0",
+        seed=3,
+        population=6,
+        generations=2,
+        set=TINY,
+        threads=2,
+        out=tmp_path / "two",
+        callback=seen.append,
+    )
     assert run.finished and [s["generation"] for s in seen] == [0, 1]
     assert run.best.env == "MountainCarContinuous-v0" and run.best.variables == ["x0", "x1"]
     assert np.isfinite(run.history["best"]).all()
     # The same run on one process: the same result (each trial's resets are seeded).
-    one = gpfd.evolve(env="MountainCarContinuous-v0", seed=3, population=6, generations=2,
-                      set=TINY, threads=1, out=tmp_path / "one")
+    one = gpfd.evolve(
+        env="MountainCarContinuous-v0",
+        seed=3,
+        population=6,
+        generations=2,
+        set=TINY,
+        threads=1,
+        out=tmp_path / "one",
+    )
     assert one.best.to_text() == run.best.to_text()
     assert without_seconds(tmp_path / "one/generations.csv") == without_seconds(
-        tmp_path / "two/generations.csv")
+        tmp_path / "two/generations.csv"
+    )
 
 
 class PidRecorder(gym.Wrapper):
@@ -49,16 +65,31 @@ class PidRecorder(gym.Wrapper):
 def test_a_callable_runs_in_worker_processes(tmp_path):
     pids = tmp_path / "pids"
     pids.mkdir()
-    run = gpfd.evolve(env=PidRecorder, env_kwargs={"directory": str(pids)}, seed=1, population=6,
-                      generations=1, set=TINY, threads=2, out=tmp_path / "run")
+    run = gpfd.evolve(
+        env=PidRecorder,
+        env_kwargs={"directory": str(pids)},
+        seed=1,
+        population=6,
+        generations=1,
+        set=TINY,
+        threads=2,
+        out=tmp_path / "run",
+    )
     assert run.config["env"]["name"] == "python:PidRecorder"
     workers = {int(p.name) for p in pids.iterdir()} - {os.getpid()}
     assert len(workers) == 2
 
 
 def test_a_discrete_action_space_works(tmp_path):
-    run = gpfd.evolve(env="CartPole-v1", seed=1, population=6, generations=1, set=TINY,
-                      threads=1, out=tmp_path / "run")
+    run = gpfd.evolve(
+        env="CartPole-v1",
+        seed=1,
+        population=6,
+        generations=1,
+        set=TINY,
+        threads=1,
+        out=tmp_path / "run",
+    )
     assert run.best.variables == ["x0", "x1", "x2", "x3"]
 
 
@@ -95,22 +126,42 @@ class TextObservations(NaNAfterThreeSteps):
 
 @pytest.mark.parametrize("threads", [1, 2])
 def test_non_finite_observations_are_clear_errors(tmp_path, threads):
-    with pytest.raises(gpfd.EnvError, match=r"python:NaNAfterThreeSteps: the observation after "
-                                            r"step 3 holds nan at index 0; gpfd needs finite"):
-        gpfd.evolve(env=NaNAfterThreeSteps, population=4, generations=1, set=TINY,
-                    threads=threads, out=tmp_path / "run")
+    with pytest.raises(
+        gpfd.EnvError,
+        match=r"python:NaNAfterThreeSteps: the observation after "
+        r"step 3 holds nan at index 0; gpfd needs finite",
+    ):
+        gpfd.evolve(
+            env=NaNAfterThreeSteps,
+            population=4,
+            generations=1,
+            set=TINY,
+            threads=threads,
+            out=tmp_path / "run",
+        )
 
 
 @pytest.mark.parametrize("threads", [1, 2])
 def test_an_environment_that_raises_is_a_clear_error(tmp_path, threads):
-    with pytest.raises(gpfd.EnvError, match=r"python:RaisesInStep: step\(.*\) raised "
-                                            r"RuntimeError: the simulator crashed \(step 0"):
-        gpfd.evolve(env=RaisesInStep, population=4, generations=1, set=TINY, threads=threads,
-                    out=tmp_path / "run")
+    with pytest.raises(
+        gpfd.EnvError,
+        match=r"python:RaisesInStep: step\(.*\) raised "
+        r"RuntimeError: the simulator crashed \(step 0",
+    ):
+        gpfd.evolve(
+            env=RaisesInStep,
+            population=4,
+            generations=1,
+            set=TINY,
+            threads=threads,
+            out=tmp_path / "run",
+        )
 
 
 def test_non_box_observations_are_refused(tmp_path):
-    with pytest.raises(TypeError, match=r"gpfd needs a Box observation space .*, not Discrete\(4\)"):
+    with pytest.raises(
+        TypeError, match=r"gpfd needs a Box observation space .*, not Discrete\(4\)"
+    ):
         gpfd.evolve(env=TextObservations, out=tmp_path / "a")
     with pytest.raises(TypeError, match="Box observation space"):
         gpfd.evolve(env="FrozenLake-v1", out=tmp_path / "b")

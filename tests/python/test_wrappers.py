@@ -40,7 +40,9 @@ def test_a_gymnasium_environment_with_float32_observations():
 
 
 def test_features_of_another_environment_are_refused():
-    with pytest.raises(TypeError, match="the features are for cartpole, the environment is acrobot"):
+    with pytest.raises(
+        TypeError, match="the features are for cartpole, the environment is acrobot"
+    ):
         FeatureObservation(gym.make("gpfd/Acrobot-v0"), FEATURES)
     with pytest.raises(TypeError, match="the features read 4 values"):
         FeatureObservation(gym.make("Pendulum-v1"), FEATURES)
