@@ -161,7 +161,7 @@ def evolve(
         return bool(callback(stats)) if callback is not None else False
 
     try:
-        directory, _ = _core.evolve(
+        directory, finished = _core.evolve(
             "" if config is None else os.fspath(config),
             overrides,
             "" if out is None else os.fspath(out),
@@ -174,7 +174,9 @@ def evolve(
     finally:
         if evaluator is not None:
             evaluator.close()
-    return load_run(directory)
+    run = load_run(directory)
+    run.finished = finished  # A resumed run may have been extended past its config.
+    return run
 
 
 def fitness(
@@ -289,14 +291,12 @@ class Run:
     history: Any  # generations.csv: DataFrame with pandas, else dict of arrays
     best: FeatureSet | None  # best.features: the best features found so far
 
+    finished: bool = False  # All the config's generations are done (or those asked for)
+
     @property
     def generations(self) -> int:
         """Generations completed."""
         return len(self.history["generation"])
-
-    @property
-    def finished(self) -> bool:
-        return self.generations >= int(self.config["gp"]["generations"])
 
     def best_of(self, generation: int) -> FeatureSet:
         """The best features of one generation (best/generation-NNNN.features)."""
@@ -326,4 +326,5 @@ def load_run(directory: str | os.PathLike, as_frame: bool | None = None) -> Run:
         columns = {"generation": []}
     best_file = path / "best.features"
     best = FeatureSet.load(str(best_file)) if best_file.is_file() else None
-    return Run(path, config, info, _table(columns, as_frame), best)
+    finished = len(columns["generation"]) >= int(config["gp"]["generations"])
+    return Run(path, config, info, _table(columns, as_frame), best, finished)

@@ -1,6 +1,9 @@
 """gpfd.evolve, gpfd.fitness, gpfd.assess and gpfd.load_run against the command line."""
 
+import signal
 import subprocess
+import sys
+import time
 
 import numpy as np
 import pytest
@@ -191,3 +194,25 @@ def test_pandas_tables_when_pandas_is_installed(repo):
     pandas = pytest.importorskip("pandas")
     run = gpfd.load_run(repo / "docs/results/paper/fig1/evolve-cartpole")
     assert isinstance(run.history, pandas.DataFrame)
+
+
+def test_ctrl_c_stops_after_a_checkpoint(tmp_path):
+    script = (
+        "import gpfd\n"
+        f"gpfd.evolve(seed=2, population=8, generations=500, set={QUICK!r}, threads=1, "
+        f"out={str(tmp_path / 'run')!r})\n"
+    )
+    process = subprocess.Popen([sys.executable, "-c", script], stderr=subprocess.PIPE, text=True)
+    history = tmp_path / "run/generations.csv"
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and (
+        not history.is_file() or len(history.read_text().splitlines()) < 3
+    ):
+        time.sleep(0.05)
+    process.send_signal(signal.SIGINT)
+    _, stderr = process.communicate(timeout=120)
+    assert process.returncode != 0 and "KeyboardInterrupt" in stderr
+    run = gpfd.load_run(tmp_path / "run")
+    assert 2 <= run.generations < 500 and not run.finished
+    resumed = gpfd.evolve(resume=tmp_path / "run", generations=run.generations + 1)
+    assert resumed.finished and resumed.generations == run.generations + 1
