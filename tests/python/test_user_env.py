@@ -124,37 +124,26 @@ class TextObservations(NaNAfterThreeSteps):
     observation_space = spaces.Discrete(4)
 
 
-@pytest.mark.parametrize("threads", [1, 2])
-def test_non_finite_observations_are_clear_errors(tmp_path, threads):
-    with pytest.raises(
-        gpfd.EnvError,
-        match=r"python:NaNAfterThreeSteps: the observation after "
-        r"step 3 holds nan at index 0; gpfd needs finite",
-    ):
-        gpfd.evolve(
-            env=NaNAfterThreeSteps,
-            population=4,
-            generations=1,
-            set=TINY,
-            threads=threads,
-            out=tmp_path / "run",
-        )
+# What a misbehaving environment stops the run with, in this process and in a worker.
+BAD_ENVS = [
+    (
+        NaNAfterThreeSteps,
+        r"python:NaNAfterThreeSteps: the observation after step 3 holds nan at index 0; gpfd "
+        r"needs finite",
+    ),
+    (
+        RaisesInStep,
+        r"python:RaisesInStep: step\(.*\) raised RuntimeError: the simulator crashed \(step 0",
+    ),
+]
 
 
 @pytest.mark.parametrize("threads", [1, 2])
-def test_an_environment_that_raises_is_a_clear_error(tmp_path, threads):
-    with pytest.raises(
-        gpfd.EnvError,
-        match=r"python:RaisesInStep: step\(.*\) raised "
-        r"RuntimeError: the simulator crashed \(step 0",
-    ):
+@pytest.mark.parametrize("env,message", BAD_ENVS)
+def test_a_misbehaving_environment_is_a_clear_error(tmp_path, threads, env, message):
+    with pytest.raises(gpfd.EnvError, match=message):
         gpfd.evolve(
-            env=RaisesInStep,
-            population=4,
-            generations=1,
-            set=TINY,
-            threads=threads,
-            out=tmp_path / "run",
+            env=env, population=4, generations=1, set=TINY, threads=threads, out=tmp_path / "r"
         )
 
 
