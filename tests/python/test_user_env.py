@@ -25,29 +25,13 @@ def without_seconds(path):
 
 def test_a_gymnasium_id_evolves_for_two_generations_in_worker_processes(tmp_path):
     seen = []
-    run = gpfd.evolve(
-        env="MountainCarContinuous-v0",
-        seed=3,
-        population=6,
-        generations=2,
-        set=TINY,
-        threads=2,
-        out=tmp_path / "two",
-        callback=seen.append,
-    )
+    common = {"env": "MountainCarContinuous-v0", "seed": 3, "population": 6, "generations": 2}
+    run = gpfd.evolve(**common, set=TINY, threads=2, out=tmp_path / "two", callback=seen.append)
     assert run.finished and [s["generation"] for s in seen] == [0, 1]
     assert run.best.env == "MountainCarContinuous-v0" and run.best.variables == ["x0", "x1"]
     assert np.isfinite(run.history["best"]).all()
     # The same run on one process: the same result (each trial's resets are seeded).
-    one = gpfd.evolve(
-        env="MountainCarContinuous-v0",
-        seed=3,
-        population=6,
-        generations=2,
-        set=TINY,
-        threads=1,
-        out=tmp_path / "one",
-    )
+    one = gpfd.evolve(**common, set=TINY, threads=1, out=tmp_path / "one")
     assert one.best.to_text() == run.best.to_text()
     assert without_seconds(tmp_path / "one/generations.csv") == without_seconds(
         tmp_path / "two/generations.csv"
