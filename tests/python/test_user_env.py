@@ -18,6 +18,9 @@ TINY = {
     "fitness.trials": 2,
 }
 
+# One generation of six.
+SHORT = {"seed": 1, "population": 6, "generations": 1, "set": TINY}
+
 
 def without_seconds(path):
     return [line.rsplit(",", 1)[0] for line in Path(path).read_text().splitlines()]
@@ -50,14 +53,7 @@ def test_a_callable_runs_in_worker_processes(tmp_path):
     pids = tmp_path / "pids"
     pids.mkdir()
     run = gpfd.evolve(
-        env=PidRecorder,
-        env_kwargs={"directory": str(pids)},
-        seed=1,
-        population=6,
-        generations=1,
-        set=TINY,
-        threads=2,
-        out=tmp_path / "run",
+        env=PidRecorder, env_kwargs={"directory": str(pids)}, **SHORT, threads=2, out=tmp_path / "r"
     )
     assert run.config["env"]["name"] == "python:PidRecorder"
     workers = {int(p.name) for p in pids.iterdir()} - {os.getpid()}
@@ -65,15 +61,7 @@ def test_a_callable_runs_in_worker_processes(tmp_path):
 
 
 def test_a_discrete_action_space_works(tmp_path):
-    run = gpfd.evolve(
-        env="CartPole-v1",
-        seed=1,
-        population=6,
-        generations=1,
-        set=TINY,
-        threads=1,
-        out=tmp_path / "run",
-    )
+    run = gpfd.evolve(env="CartPole-v1", **SHORT, threads=1, out=tmp_path / "run")
     assert run.best.variables == ["x0", "x1", "x2", "x3"]
 
 
@@ -126,9 +114,7 @@ BAD_ENVS = [
 @pytest.mark.parametrize("env,message", BAD_ENVS)
 def test_a_misbehaving_environment_is_a_clear_error(tmp_path, threads, env, message):
     with pytest.raises(gpfd.EnvError, match=message):
-        gpfd.evolve(
-            env=env, population=4, generations=1, set=TINY, threads=threads, out=tmp_path / "r"
-        )
+        gpfd.evolve(env=env, **SHORT, threads=threads, out=tmp_path / "r")
 
 
 def test_non_box_observations_are_refused(tmp_path):
