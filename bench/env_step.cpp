@@ -1,5 +1,5 @@
 // Steps per second of the benchmark environments (Google Benchmark). Compare Acrobot and cart-pole
-// with Gymnasium side by side using bench/gymnasium_classic_control.py (see docs/environments.md).
+// with Gymnasium side by side using bench/python_speed.py (see docs/python.md).
 #include <benchmark/benchmark.h>
 
 #include <string>

@@ -41,26 +41,12 @@ int showFront(const std::string& dir) {
   return 0;
 }
 
-std::string render(const expr::FeaturesFile& file, const std::string& format) {
-  const auto& g = file.genome;
-  if (format == "c") return expr::exportC(g, file.variables);
-  if (format == "python") return expr::exportPython(g, file.variables);
-  if (format == "latex") return expr::exportLatex(g, file.variables);
-  std::string text;
-  for (std::size_t k = 0; k < g.featureCount(); ++k) {
-    text += (format == "sexpr" ? expr::toSexpr(g.feature(k), file.variables)
-                               : expr::toInfix(g.feature(k), file.variables)) +
-            "\n";
-  }
-  return text;
-}
-
 int run(const FeaturesOptions& o) {
   if (o.front) return showFront(o.file);
   auto file = expr::readFeaturesFile(
       std::filesystem::is_directory(o.file) ? o.file + "/best.features" : o.file);
   if (o.simplify) file.genome = expr::simplify(file.genome);
-  const std::string text = render(file, o.format);
+  const std::string text = expr::exportAs(file.genome, file.variables, o.format);
   if (o.out.empty()) {
     fmt::print("{}", text);
   } else {

@@ -4,6 +4,8 @@
 
 #include <cctype>
 
+#include "gpfd/util/error.hpp"
+
 namespace gpfd::expr {
 namespace {
 
@@ -271,6 +273,22 @@ std::string exportLatex(const Genome& genome, const VariableNames& names) {
                        k + 1 < genome.featureCount() ? " \\\\" : "");
   }
   return out + "\\end{align*}\n";
+}
+
+std::string exportAs(const Genome& genome, const VariableNames& names, const std::string& format) {
+  if (format == "c") return exportC(genome, names);
+  if (format == "python") return exportPython(genome, names);
+  if (format == "latex") return exportLatex(genome, names);
+  if (format != "infix" && format != "sexpr") {
+    throw InputError("unknown format '" + format + "' (infix, sexpr, c, python, latex)", "format");
+  }
+  std::string text;
+  for (std::size_t k = 0; k < genome.featureCount(); ++k) {
+    text += (format == "sexpr" ? toSexpr(genome.feature(k), names)
+                               : toInfix(genome.feature(k), names)) +
+            "\n";
+  }
+  return text;
 }
 
 }  // namespace gpfd::expr

@@ -17,5 +17,8 @@ std::string exportC(const Genome& genome, const VariableNames& names);
 std::string exportPython(const Genome& genome, const VariableNames& names);
 // One `\phi_k(s) = ...` line per feature, in an align* environment.
 std::string exportLatex(const Genome& genome, const VariableNames& names);
+// The features in `format`: "infix" or "sexpr" (one feature per line), or one of the exports above
+// ("c", "python", "latex"). InputError for another format.
+std::string exportAs(const Genome& genome, const VariableNames& names, const std::string& format);
 
 }  // namespace gpfd::expr

@@ -1,0 +1,198 @@
+#!/usr/bin/env python3
+"""gpfd from Python against Gymnasium and NumPy, side by side in one run (docs/python.md).
+
+Usage, with the package installed (scripts/test installs it in .venv):
+  .venv/bin/python bench/python_speed.py [--quick]
+
+1. Environment steps per second: one environment through gymnasium.make (gpfd's vs Gymnasium's
+   CartPole-v1 and Acrobot-v1, the same tasks), and vector environments of N = 64: gpfd's
+   (one C++ call per step) vs Gymnasium's SyncVectorEnv (and, for CartPole, Gymnasium's own NumPy
+   vector environment). Random actions drawn beforehand; auto-reset as each does it.
+2. FeatureSet throughput (states per second) for N = 1 and N = 4096 states per call, against the
+   same features as the NumPy function of `gpfd features export --format python`.
+3. The cost of one fitness evaluation (GP's short learning trials) on cart-pole built in (stepped
+   in C++), on gpfd's cart-pole stepped in Python through Gymnasium (gpfd/CartPole-v0), and on
+   Gymnasium's CartPole-v1.
+Every figure is the median of 3 repetitions, timed in CPU seconds of this process (everything
+here runs on one thread), so that other jobs on the machine disturb it less than wall time.
+"""
+
+import argparse
+import statistics
+import time
+import warnings
+from pathlib import Path
+
+import gymnasium as gym
+import numpy as np
+
+import gpfd
+
+REPO = Path(__file__).resolve().parents[1]
+REPEATS = 3
+
+
+def median_rate(measure):
+    """The median over REPEATS of measure() -> (items, seconds), as items per second."""
+    rates = []
+    for _ in range(REPEATS):
+        items, seconds = measure()
+        rates.append(items / seconds)
+    return statistics.median(rates)
+
+
+def single_env_rate(env, steps, actions):
+    picks = np.random.default_rng(0).integers(0, actions, size=steps)
+
+    def measure():
+        env.reset(seed=0)
+        start = time.process_time()
+        for a in picks:
+            _, _, terminated, truncated, _ = env.step(int(a))
+            if terminated or truncated:
+                env.reset()
+        return steps, time.process_time() - start
+
+    return median_rate(measure)
+
+
+def vector_env_rate(envs, steps):
+    envs.action_space.seed(0)
+    picks = [envs.action_space.sample() for _ in range(steps)]
+
+    def measure():
+        envs.reset(seed=0)
+        start = time.process_time()
+        for a in picks:
+            envs.step(a)
+        return steps * envs.num_envs, time.process_time() - start
+
+    return median_rate(measure)
+
+
+def environments(scale):
+    print("1. environment steps per second (random discrete actions)")
+    print(f"{'task':<10} {'':<28} {'gpfd':>12} {'Gymnasium':>12} {'ratio':>7}")
+    for task, ours_id, theirs_id, actions in [
+        ("CartPole", "gpfd/CartPole-v0", "CartPole-v1", 2),
+        ("Acrobot", "gpfd/Acrobot-v0", "Acrobot-v1", 3),
+    ]:
+        kwargs = {"actions": "discrete", "max_steps": 500}
+        ours = single_env_rate(gym.make(ours_id, **kwargs), 20000 * scale, actions)
+        theirs = single_env_rate(gym.make(theirs_id), 20000 * scale // 4, actions)
+        print(
+            f"{task:<10} {'one env (gymnasium.make)':<28} {ours:>12,.0f} {theirs:>12,.0f} "
+            f"{ours / theirs:>6.1f}x"
+        )
+        n = 64
+        ours = vector_env_rate(gym.make_vec(ours_id, num_envs=n, **kwargs), 2000 * scale)
+        sync = gym.make_vec(theirs_id, num_envs=n, vectorization_mode="sync")
+        theirs = vector_env_rate(sync, 200 * scale)
+        print(
+            f"{task:<10} {f'N = {n}: vs SyncVectorEnv':<28} {ours:>12,.0f} {theirs:>12,.0f} "
+            f"{ours / theirs:>6.1f}x"
+        )
+        if task == "CartPole":
+            numpy_vec = gym.make_vec(theirs_id, num_envs=n, vectorization_mode="vector_entry_point")
+            theirs = vector_env_rate(numpy_vec, 2000 * scale)
+            print(
+                f"{task:<10} {f'N = {n}: vs its NumPy vector env':<28} {ours:>12,.0f} "
+                f"{theirs:>12,.0f} {ours / theirs:>6.1f}x"
+            )
+
+
+def calls_rate(function, x, calls, n):
+    """(states, CPU seconds) of `calls` calls of function(x) on n states."""
+    start = time.process_time()
+    for _ in range(calls):
+        function(x)
+    return calls * n, time.process_time() - start
+
+
+def feature_sets(scale):
+    path = REPO / "docs/results/paper/fig6/evolve-swimmer5/best.features"
+    fs = gpfd.FeatureSet.load(str(path))
+    namespace = {}
+    exec(fs.export("python"), namespace)
+    numpy_features = namespace["features"]
+
+    def as_matrix(x):
+        return np.stack(np.broadcast_arrays(*numpy_features(x)), axis=-1)
+
+    print(
+        f"\n2. FeatureSet: {fs.n_features} features of the 5-segment swimmer ({path.name} of "
+        f"Figure 6, {fs.input_dim} variables), states per second"
+    )
+    print(f"{'states per call':<16} {'FeatureSet':>14} {'NumPy export':>14} {'ratio':>7}")
+    rng = np.random.default_rng(0)
+    for n, calls in [(1, 20000 * scale), (4096, 50 * scale)]:
+        x = rng.normal(size=(n, fs.input_dim)) if n > 1 else rng.normal(size=fs.input_dim)
+        assert np.array_equal(fs(x), as_matrix(x))  # The same values, bit for bit.
+
+        a = median_rate(lambda f=fs, x=x, k=calls, n=n: calls_rate(f, x, k, n))
+        fewer = max(1, calls // 10)  # NumPy is slower: fewer calls for the same time.
+        b = median_rate(lambda f=as_matrix, x=x, k=fewer, n=n: calls_rate(f, x, k, n))
+        print(f"{n:<16} {a:>14,.0f} {b:>14,.0f} {a / b:>6.1f}x")
+
+
+def fitness_cost(scale):
+    settings = {"learner.params.updates": 10, "learner.params.episodes": 10, "fitness.trials": 3}
+    builtin = {**settings, "env.params.actions": "discrete", "env.params.max_steps": 500}
+    raw = gpfd.FeatureSet.parse("x\ndx\nth\ndth\n", env="cartpole")
+    python_raw = gpfd.FeatureSet.parse("x0\nx1\nx2\nx3\n", variables=["x0", "x1", "x2", "x3"])
+    seeds = range(1, 1 + 3 * scale)
+
+    def per_evaluation(run):
+        def measure():
+            start = time.process_time()
+            for seed in seeds:
+                run(seed)
+            return len(seeds), time.process_time() - start
+
+        return 1.0 / median_rate(measure)
+
+    cases = [
+        ("cartpole built in (C++)", lambda s: gpfd.fitness(raw, set=builtin, seed=s)),
+        (
+            "gpfd/CartPole-v0 stepped in Python",
+            lambda s: gpfd.fitness(
+                python_raw,
+                env="gpfd/CartPole-v0",
+                set=settings,
+                seed=s,
+                env_kwargs={"actions": "discrete", "max_steps": 500},
+            ),
+        ),
+        (
+            "Gymnasium CartPole-v1 (Python)",
+            lambda s: gpfd.fitness(python_raw, env="CartPole-v1", set=settings, seed=s),
+        ),
+    ]
+    print(
+        "\n3. one fitness evaluation: 3 trials x 11 batches of 10 episodes, raw variables, "
+        "policy gradient (cartpole-quick's learner)"
+    )
+    base = None
+    for name, run in cases:
+        seconds = per_evaluation(run)
+        base = base or seconds
+        print(f"{name:<36} {seconds * 1000:>9.1f} ms {seconds / base:>7.1f}x")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="a tenth of the work (a smoke test)")
+    args = parser.parse_args()
+    warnings.filterwarnings("ignore")
+    scale = 1 if args.quick else 10
+    print(
+        f"gpfd {gpfd.__version__}, Gymnasium {gym.__version__}, NumPy {np.__version__}; "
+        f"median of {REPEATS}, CPU time\n"
+    )
+    environments(scale)
+    feature_sets(scale)
+    fitness_cost(max(1, scale // 5))
+
+
+if __name__ == "__main__":
+    main()

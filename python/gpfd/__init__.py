@@ -1,0 +1,36 @@
+"""gpfd from Python: feature discovery for reinforcement learning with genetic programming.
+
+The core is gpfd's C++ library; this package is a thin front over it:
+
+- ``FeatureSet``: discovered features, JIT-compiled, callable on NumPy observations.
+- ``gpfd/Acrobot-v0``, ``gpfd/CartPole-v0``, ``gpfd/Swimmer-v0``, ``gpfd/Tetris-v0``: gpfd's
+  environments in Gymnasium (``gymnasium.make``, ``gymnasium.make_vec``), registered on import.
+- ``wrappers.FeatureObservation``: a Gymnasium wrapper that shows an agent the features.
+- ``evolve``, ``fitness``, ``assess``, ``load_run``: discovery, GP's fitness, the test protocol and
+  results directories, as ``gpfd evolve`` and ``gpfd assess`` run them; ``evolve`` also runs on any
+  Gymnasium environment with a Box observation space, stepped in Python.
+
+docs/python.md in gpfd's repository is the guide.
+"""
+
+from gpfd import envs as _envs
+from gpfd import wrappers
+from gpfd._core import FeatureSet, InputError, __version__
+from gpfd.discovery import Run, assess, builtin_configs, evolve, fitness, load_run
+from gpfd.user_env import EnvError
+
+_envs.register_all()
+
+__all__ = [
+    "EnvError",
+    "FeatureSet",
+    "InputError",
+    "Run",
+    "__version__",
+    "assess",
+    "builtin_configs",
+    "evolve",
+    "fitness",
+    "load_run",
+    "wrappers",
+]

@@ -1,0 +1,330 @@
+"""Discovery (``gpfd evolve``), GP's fitness, assessment (``gpfd assess``) and results directories.
+
+``evolve`` and ``assess`` call the same C++ code as the command line, with the same config loading
+(a TOML file or a shipped config name, ``key=value`` overrides): the same seed gives the same
+``best.features`` from Python as from ``gpfd evolve``, whatever the number of threads.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+import os
+import sys
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from gpfd import _core, user_env
+from gpfd._core import FeatureSet
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+Callback = Callable[[dict[str, Any]], Any]
+
+
+def builtin_configs() -> list[str]:
+    """The names of the shipped configs (configs/NAME.toml), usable as ``config=``."""
+    return list(_core.builtin_configs())
+
+
+def _toml_value(value: Any) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, np.integer)):
+        return str(int(value))
+    if isinstance(value, (float, np.floating)):
+        if not math.isfinite(value):
+            raise ValueError(f"config values must be finite, got {value}")
+        return repr(float(value))
+    if isinstance(value, str):
+        return json.dumps(value)  # A TOML basic string.
+    if isinstance(value, Mapping):
+        return "{" + ", ".join(f"{k} = {_toml_value(v)}" for k, v in value.items()) + "}"
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    raise TypeError(f"cannot write {type(value).__name__} into a config: {value!r}")
+
+
+def _param_text(value: Any) -> str:
+    """A ``--param`` value as text: strings as they are, numbers and bools as TOML writes them."""
+    return value if isinstance(value, str) else _toml_value(value)
+
+
+def _overrides(settings: Mapping[str, Any] | Iterable[str] | None) -> list[str]:
+    """``set=`` as ``key=value`` texts: a mapping {"gp.elitism": 0.2} or texts "gp.elitism=0.2"."""
+    if settings is None:
+        return []
+    if isinstance(settings, Mapping):
+        return [f"{key}={_toml_value(value)}" for key, value in settings.items()]
+    if isinstance(settings, str):
+        return [settings]
+    return [str(s) for s in settings]
+
+
+def _env_overrides(
+    env: Any, env_kwargs: dict | None
+) -> tuple[list[str], user_env.Evaluator | None]:
+    """The overrides that select `env`, and for an environment stepped in Python its evaluator
+    (not yet started)."""
+    if env is None:
+        if env_kwargs:
+            raise TypeError("env_kwargs needs env=")
+        return [], None
+    if isinstance(env, str) and user_env.is_builtin(env):
+        if env_kwargs:
+            raise TypeError(
+                f"{env} is gpfd's own environment: give its parameters with "
+                f"set={{'env.params.<name>': value}}"
+            )
+        return [f"env.name={_toml_value(env)}"], None
+    name, factory = user_env.resolve(env, env_kwargs)
+    user_env.register(name, factory)
+    return [f"env.name={_toml_value(name)}", "env.params={}"], user_env.Evaluator(name, factory, 1)
+
+
+def _print_generation(stats: dict[str, Any]) -> None:
+    print(
+        f"gen {stats['generation']:3d}  best {stats['best']:.6g}  mean {stats['mean']:.6g}  "
+        f"features {stats['mean_features']:.2f}  size {stats['mean_size']:.1f}  "
+        f"evals {stats['evaluations']} (+{stats['cache_hits']} cached)  {stats['seconds']:.1f}s",
+        flush=True,
+    )
+
+
+def evolve(
+    config: str | os.PathLike | None = None,
+    *,
+    env: str | Callable[[], Any] | None = None,
+    seed: int | None = None,
+    threads: int = 0,
+    population: int | None = None,
+    generations: int | None = None,
+    out: str | os.PathLike | None = None,
+    set: Mapping[str, Any] | Iterable[str] | None = None,
+    callback: Callback | None = None,
+    resume: str | os.PathLike | None = None,
+    env_kwargs: dict[str, Any] | None = None,
+    verbose: bool = False,
+) -> Run:
+    """Discovers features with GP, exactly as ``gpfd evolve`` does, and returns the run.
+
+    config: a TOML file or a shipped config name (default ``cartpole-quick``).
+    env: one of gpfd's environments (``"acrobot"``, like ``--env``), or a Gymnasium id or a
+        callable returning a Gymnasium environment, stepped in Python in ``threads`` worker
+        processes (see gpfd.user_env); ``env_kwargs`` go to ``gymnasium.make`` or the callable.
+    seed, population, generations: override the config's, like the command's flags.
+    threads: worker threads (processes for a Python environment); 0: all cores. Never changes
+        the results.
+    out: the results directory (default ``results/<name>``, or ``results/<name>-N`` when taken).
+    set: any config key, ``{"gp.elitism": 0.2}`` or ``["gp.elitism=0.2"]`` (``--set``).
+    callback: called after each generation (once its checkpoint is written) with its statistics
+        (generation, best, mean, median, mean_size, mean_features, evaluations, cache_hits,
+        seconds, best_features); a true return value stops the run there.
+    resume: continue the run in this directory (with its stored config; only ``generations`` may
+        extend it; give ``env`` again for an environment stepped in Python).
+    verbose: print a line per generation.
+
+    Ctrl-C stops the run at the end of the running generation, after its checkpoint.
+    """
+    overrides, evaluator = _env_overrides(env, env_kwargs)
+    if resume is not None:
+        if seed is not None or population is not None or set is not None:
+            raise TypeError("resume continues with the stored config; only generations may change")
+        stored = tomllib.loads(Path(resume, "config.toml").read_text())["env"]["name"]
+        if not user_env.is_builtin(stored):
+            if evaluator is None:
+                raise TypeError(f"the run in {resume} is on {stored}: give env= to resume it")
+            user_env.register(stored, evaluator.factory)
+            evaluator.name = stored
+    else:
+        if seed is not None:
+            overrides.append(f"seed={int(seed)}")
+        if population is not None:
+            overrides.append(f"gp.population={int(population)}")
+        if generations is not None:
+            overrides.append(f"gp.generations={int(generations)}")
+        overrides += _overrides(set)
+    if evaluator is not None:
+        evaluator.workers = threads if threads > 0 else (os.cpu_count() or 1)
+
+    def on_generation(stats: dict[str, Any]) -> bool:
+        if verbose:
+            _print_generation(stats)
+        return bool(callback(stats)) if callback is not None else False
+
+    try:
+        directory, finished = _core.evolve(
+            "" if config is None else os.fspath(config),
+            overrides,
+            "" if out is None else os.fspath(out),
+            "" if resume is None else os.fspath(resume),
+            int(threads),
+            generations if resume is not None else None,
+            on_generation,
+            evaluator,
+        )
+    finally:
+        if evaluator is not None:
+            evaluator.close()
+    run = load_run(directory)
+    run.finished = finished  # A resumed run may have been extended past its config.
+    return run
+
+
+def fitness(
+    features: FeatureSet | str | os.PathLike,
+    config: str | os.PathLike | None = None,
+    *,
+    env: str | Callable[[], Any] | None = None,
+    seed: int = 1,
+    set: Mapping[str, Any] | Iterable[str] | None = None,
+    env_kwargs: dict[str, Any] | None = None,
+) -> float:
+    """GP's fitness of a feature set: the mean score of the config's short learning trials, as
+    one evaluation in ``gpfd evolve`` computes it (run::trialFitness with ``Rng(seed)``). An
+    environment stepped in Python runs in this process."""
+    overrides, _ = _env_overrides(env, env_kwargs)
+    overrides += _overrides(set)
+    if not isinstance(features, FeatureSet):
+        features = FeatureSet.load(os.fspath(features))
+    return _core.fitness(
+        "" if config is None else os.fspath(config), overrides, features, int(seed)
+    )
+
+
+def _table(columns: dict[str, list], as_frame: bool | None) -> Any:
+    arrays = {key: np.asarray(values) for key, values in columns.items()}
+    if as_frame is False:
+        return arrays
+    try:
+        import pandas
+    except ImportError:
+        if as_frame:
+            raise
+        return arrays
+    return pandas.DataFrame(arrays)
+
+
+_SUMMARY_COLUMNS = [
+    "set",
+    "runs",
+    "mean_final",
+    "std",
+    "ci95",
+    "diverged",
+    "welch_t",
+    "welch_p",
+    "mann_whitney_u",
+    "mann_whitney_p",
+    "cohen_d",
+    "a12",
+    "mean_area",
+    "area_ci95",
+    "area_welch_p",
+    "area_mann_whitney_p",
+]
+
+
+def assess(
+    features: FeatureSet | str | os.PathLike | Iterable[FeatureSet | str | os.PathLike] = (),
+    *,
+    env: str | None = None,
+    config: str | os.PathLike | None = None,
+    raw: bool = False,
+    with_original: bool = False,
+    fourier: int = 0,
+    runs: int | None = None,
+    budget: int | None = None,
+    params: Mapping[str, Any] | None = None,
+    seed: int = 1,
+    threads: int = 0,
+    out: str | os.PathLike | None = None,
+    as_frame: bool | None = None,
+) -> Any:
+    """The paper's test protocol, as ``gpfd assess`` runs it: each feature set (and the original
+    state variables, the baseline, first) trained with the long budget over ``runs`` runs, with
+    Welch and Mann-Whitney tests against the baseline. Returns the statistics table (the columns
+    of summary.csv) as a pandas DataFrame when pandas is installed (``as_frame=None``), else as a
+    dict of NumPy arrays. ``out`` also writes curves, finals, summary and plots there.
+
+    params: ``k=v`` for the environment or the learner, like ``--param``.
+    """
+    if isinstance(features, (FeatureSet, str, os.PathLike)):
+        features = [features]
+    env_name = env if env is not None else ""
+    sets = [
+        f if isinstance(f, FeatureSet) else FeatureSet.load(os.fspath(f), env=env) for f in features
+    ]
+    text_params = {str(k): _param_text(v) for k, v in (params or {}).items()}
+    table = _core.assess(
+        "" if config is None else os.fspath(config),
+        env_name,
+        text_params,
+        int(runs or 0),
+        int(budget or 0),
+        int(seed),
+        int(threads),
+        sets,
+        bool(raw),
+        bool(with_original),
+        int(fourier),
+        "" if out is None else os.fspath(out),
+    )
+    return _table({key: table[key] for key in _SUMMARY_COLUMNS}, as_frame)
+
+
+@dataclass
+class Run:
+    """A results directory of ``gpfd evolve`` (or ``gpfd.evolve``)."""
+
+    dir: Path
+    config: dict[str, Any]  # config.toml, fully resolved
+    info: dict[str, Any]  # run.json: seed, version, revision, threads
+    history: Any  # generations.csv: DataFrame with pandas, else dict of arrays
+    best: FeatureSet | None  # best.features: the best features found so far
+
+    finished: bool = False  # All the config's generations are done (or those asked for)
+
+    @property
+    def generations(self) -> int:
+        """Generations completed."""
+        return len(self.history["generation"])
+
+    def best_of(self, generation: int) -> FeatureSet:
+        """The best features of one generation (best/generation-NNNN.features)."""
+        return FeatureSet.load(str(self.dir / "best" / f"generation-{generation:04d}.features"))
+
+
+def load_run(directory: str | os.PathLike, as_frame: bool | None = None) -> Run:
+    """Reads a results directory: its config, run.json, generations.csv and best.features."""
+    path = Path(directory)
+    if not (path / "config.toml").is_file():
+        raise FileNotFoundError(f"{path} holds no gpfd run (no config.toml)")
+    config = tomllib.loads((path / "config.toml").read_text())
+    info = json.loads((path / "run.json").read_text()) if (path / "run.json").is_file() else {}
+    columns: dict[str, list] = {}
+    history_file = path / "generations.csv"
+    if history_file.is_file():
+        with history_file.open(newline="") as f:
+            reader = csv.DictReader(f)
+            columns = {name: [] for name in reader.fieldnames or []}
+            for row in reader:
+                for name, value in row.items():
+                    columns[name].append(float(value))
+    for name in ("generation", "evaluations", "cache_hits"):
+        if name in columns:
+            columns[name] = [int(v) for v in columns[name]]
+    if not columns:
+        columns = {"generation": []}
+    best_file = path / "best.features"
+    best = FeatureSet.load(str(best_file)) if best_file.is_file() else None
+    finished = len(columns["generation"]) >= int(config["gp"]["generations"])
+    return Run(path, config, info, _table(columns, as_frame), best, finished)

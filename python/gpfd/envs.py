@@ -1,0 +1,153 @@
+"""gpfd's environments as Gymnasium environments, registered under the ``gpfd/`` namespace.
+
+Every parameter that ``gpfd envs`` lists is a keyword of ``gymnasium.make``::
+
+    env = gymnasium.make("gpfd/Swimmer-v0", segments=5)
+    env = gymnasium.make("gpfd/CartPole-v0", actions="discrete", max_steps=500)
+
+Observations are the state variables as float64 (``env.unwrapped.state_names``); the dynamics,
+rewards and time limits are gpfd's own (docs/environments.md). Seeding follows Gymnasium:
+``reset(seed=s)`` starts the environment's stream from ``s`` (the same start state as
+``gpfd simulate ENV --seed s``), ``reset()`` continues it, and the first reset without a seed
+draws one from fresh entropy.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+from gymnasium import spaces
+
+from gpfd import _core
+
+# Gymnasium ids of the built-in environments; any other registered gpfd environment gets
+# gpfd/<Name>-v0.
+_IDS = {
+    "acrobot": "gpfd/Acrobot-v0",
+    "cartpole": "gpfd/CartPole-v0",
+    "swimmer": "gpfd/Swimmer-v0",
+    "tetris": "gpfd/Tetris-v0",
+}
+
+
+def gym_id(name: str) -> str:
+    """The Gymnasium id of a gpfd environment."""
+    return _IDS.get(name) or f"gpfd/{name[:1].upper()}{name[1:]}-v0"
+
+
+def check_params(name: str, params: dict[str, Any]) -> None:
+    """TypeError for a keyword that is not one of the environment's parameters."""
+    known = [p[0] for p in _core.env_params(name)]
+    unknown = sorted(set(params) - set(known))
+    if unknown:
+        raise TypeError(
+            f"{gym_id(name)} got unknown keyword{'s' if len(unknown) > 1 else ''} "
+            f"{', '.join(map(repr, unknown))}; its parameters are: {', '.join(known)}"
+        )
+
+
+def seed64(seed: int) -> int:
+    """A Gymnasium seed (any int >= 0) as the 64-bit seed of gpfd's generator."""
+    return int(seed) & 0xFFFFFFFFFFFFFFFF
+
+
+def observation_space(core: _core.EnvBatch) -> spaces.Box:
+    dim = len(core.state_names)
+    return spaces.Box(-np.inf, np.inf, shape=(dim,), dtype=np.float64)
+
+
+def action_space(core: _core.EnvBatch) -> spaces.Space:
+    """Discrete(n) for a choice, MultiDiscrete([4, cols]) for Tetris' (orientation, column), a
+    float64 Box for continuous actions."""
+    if core.action_kind == "discrete":
+        return spaces.Discrete(core.action_choices)
+    if core.action_kind == "tetris":
+        return spaces.MultiDiscrete([4, core.tetris_columns])
+    low = np.asarray(core.action_low, dtype=np.float64)
+    high = np.asarray(core.action_high, dtype=np.float64)
+    return spaces.Box(low, high, dtype=np.float64)
+
+
+class GpfdEnv(gym.Env):
+    """One of gpfd's environments (``gpfd_env``: its name in ``gpfd envs``), stepped in C++.
+
+    Tetris: an action is (orientation, column); one that is not a legal placement of the current
+    piece is mapped to the nearest legal one (orientation modulo the piece's orientations, column
+    clipped). ``info["action_mask"]`` (4 x cols, bool) marks the legal ones and
+    :meth:`afterstates` lists every placement with the state it leads to.
+    """
+
+    metadata: dict[str, Any] = {"render_modes": []}
+
+    def __init__(self, gpfd_env: str, render_mode: str | None = None, **params: Any):
+        check_params(gpfd_env, params)
+        if render_mode is not None:
+            raise ValueError(f"{gym_id(gpfd_env)} does not render (render_mode={render_mode!r})")
+        self._core = _core.EnvBatch(gpfd_env, params, 1, "disabled")
+        self.gpfd_name = gpfd_env
+        self.state_names = tuple(self._core.state_names)
+        self.params = dict(self._core.params)
+        self.observation_space = observation_space(self._core)
+        self.action_space = action_space(self._core)
+        self._tetris = self._core.action_kind == "tetris"
+        self._seeded = False
+
+    def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
+        """Starts an episode. ``options={"state": values}`` then sets the state exactly."""
+        super().reset(seed=seed)
+        if seed is not None:
+            self._core.seed(0, seed64(seed))
+        elif not self._seeded:
+            self._core.seed(0, int(self.np_random.integers(2**63)))
+        self._seeded = True
+        obs = self._core.reset_one()
+        if options and "state" in options:
+            self.set_state(options["state"])
+            obs = self._core.state(0)
+        return obs, self._info()
+
+    def step(self, action):
+        obs, reward, terminated, truncated = self._core.step_one(action)
+        return obs, reward, terminated, truncated, self._info()
+
+    @property
+    def state(self) -> np.ndarray:
+        """The state variables (a copy)."""
+        return self._core.state(0)
+
+    def set_state(self, values) -> None:
+        """Sets the state variables exactly (gpfd.InputError when the environment cannot take
+        them)."""
+        values = np.ascontiguousarray(values, dtype=np.float64).ravel()
+        if values.shape != self.observation_space.shape:
+            raise ValueError(
+                f"{gym_id(self.gpfd_name)} has {self.observation_space.shape[0]} state variables "
+                f"({', '.join(self.state_names)}), got {values.size} values"
+            )
+        self._core.set_state(0, values)
+
+    def afterstates(self) -> dict[str, np.ndarray]:
+        """Tetris: every legal placement: ``actions`` (K x 2), ``features`` (the state after it,
+        K x d), ``rewards`` (rows removed) and ``game_over``."""
+        return self._core.afterstates(0)
+
+    def _info(self) -> dict[str, Any]:
+        return {"action_mask": self._core.action_mask(0)} if self._tetris else {}
+
+
+def register_all() -> None:
+    """Registers every gpfd environment with Gymnasium (idempotent)."""
+    from gpfd.user_env import is_builtin
+
+    for name in filter(is_builtin, _core.env_names()):
+        env_id = gym_id(name)
+        if env_id in gym.registry:
+            continue
+        gym.register(
+            id=env_id,
+            entry_point="gpfd.envs:GpfdEnv",
+            vector_entry_point="gpfd.vector:GpfdVectorEnv",
+            kwargs={"gpfd_env": name},
+        )

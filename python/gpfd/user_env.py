@@ -1,0 +1,200 @@
+"""Your own Gymnasium environment in gpfd's discovery: stepped in Python, in worker processes.
+
+``gpfd.evolve(env=...)`` takes a Gymnasium id (``"MountainCarContinuous-v0"``) or a callable that
+returns a Gymnasium environment. The environment needs a Box observation space (its observation,
+flattened, is the state: variables x0, x1, ...) and a Box (finite bounds) or Discrete action space.
+Every episode starts with ``reset(seed=s)``, s drawn from the trial's own stream, so a run is
+reproducible when the environment is deterministic given its seed. Fitness evaluations run in
+worker processes (one per thread asked for), since Python steps one environment at a time per
+process; each worker makes its own environments.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import multiprocessing
+import os
+from collections.abc import Callable
+from typing import Any
+
+import cloudpickle
+import gymnasium as gym
+import numpy as np
+from gymnasium import spaces
+
+from gpfd import _core
+
+
+class EnvError(RuntimeError):
+    """A Gymnasium environment stepped by gpfd misbehaved: it raised, or returned an observation
+    that is not finite or not of its space's size."""
+
+
+# The environment factory of each registered name, in this process.
+_factories: dict[str, Callable[[], gym.Env]] = {}
+
+
+def is_builtin(name: str) -> bool:
+    """Whether `name` is one of gpfd's own (C++) environments, not one registered from Python."""
+    return name in _core.env_names() and name not in _factories
+
+
+def state_names(space: spaces.Space) -> list[str]:
+    """x0 .. x{d-1} for a Box observation space of d values; TypeError for any other space."""
+    if not isinstance(space, spaces.Box):
+        raise TypeError(
+            f"gpfd needs a Box observation space (a vector of numbers), not {space}; wrap the "
+            "environment (e.g. gymnasium.wrappers.FlattenObservation) to give it one"
+        )
+    return [f"x{i}" for i in range(math.prod(space.shape))]
+
+
+def resolve(env: str | Callable[[], gym.Env], env_kwargs: dict | None) -> tuple[str, Callable]:
+    """(registry name, factory) for a Gymnasium id or a callable returning an environment."""
+    if isinstance(env, str):
+        if ":" not in env:  # "module:Id" imports the module first: gymnasium.make checks it.
+            try:
+                gym.spec(env)
+            except gym.error.Error as e:
+                builtin = ", ".join(filter(is_builtin, _core.env_names()))
+                raise _core.InputError(
+                    f"unknown environment {env!r}: neither gpfd's ({builtin}) nor a Gymnasium "
+                    f"id ({e})"
+                ) from None
+        return env, functools.partial(gym.make, env, **(env_kwargs or {}))
+    if not callable(env):
+        raise TypeError(
+            f"env must be a name, a Gymnasium id or a callable, not {type(env).__name__}"
+        )
+    if env_kwargs:
+        env = functools.partial(env, **env_kwargs)
+    target = env.func if isinstance(env, functools.partial) else env
+    return "python:" + getattr(target, "__qualname__", type(target).__name__), env
+
+
+def register(name: str, factory: Callable[[], gym.Env]) -> None:
+    """Makes `name` a gpfd environment whose instances `factory` makes (in this process)."""
+    _factories[name] = factory
+    _core.register_python_env(name, "a Gymnasium environment stepped in Python")
+
+
+def make_adapter(name: str) -> Adapter:
+    """Called by gpfd's registry (C++) for each new instance."""
+    try:
+        env = _factories[name]()
+    except Exception as e:
+        raise EnvError(f"{name}: making the environment raised {type(e).__name__}: {e}") from e
+    return Adapter(name, env)
+
+
+class Adapter:
+    """Drives one Gymnasium environment for gpfd: checks its spaces once and every observation,
+    converts actions, and turns its exceptions into EnvError naming the call."""
+
+    def __init__(self, name: str, env: gym.Env):
+        self.name = name
+        self.env = env
+        self.state_dim = len(state_names(env.observation_space))
+        space = env.action_space
+        if isinstance(space, spaces.Discrete):
+            self.action_kind = "discrete"
+            self.choices = int(space.n)
+            self._start = int(space.start)
+        elif isinstance(space, spaces.Box):
+            low = np.asarray(space.low, dtype=np.float64).ravel()
+            high = np.asarray(space.high, dtype=np.float64).ravel()
+            if not (np.isfinite(low).all() and np.isfinite(high).all()):
+                raise TypeError(f"{name}: gpfd's learners need finite action bounds, got {space}")
+            self.action_kind = "continuous"
+            self.low, self.high = low.tolist(), high.tolist()
+            self._shape, self._dtype = space.shape, space.dtype
+        else:
+            raise TypeError(f"{name}: gpfd drives Box or Discrete action spaces, not {space}")
+        self._steps = 0
+
+    def reset(self, seed: int) -> np.ndarray:
+        self._steps = 0
+        try:
+            obs, _ = self.env.reset(seed=seed)
+        except Exception as e:
+            raise EnvError(f"{self.name}: reset(seed={seed}) raised {type(e).__name__}: {e}") from e
+        return self._observation(obs, f"reset(seed={seed})")
+
+    def step(self, action: np.ndarray) -> tuple[np.ndarray, float, bool, bool]:
+        if self.action_kind == "discrete":
+            act: Any = int(action[0]) + self._start
+        else:
+            act = action.reshape(self._shape).astype(self._dtype)
+        try:
+            obs, reward, terminated, truncated, _ = self.env.step(act)
+        except Exception as e:
+            raise EnvError(
+                f"{self.name}: step({act!r}) raised {type(e).__name__}: {e} (step {self._steps} "
+                "of an episode)"
+            ) from e
+        self._steps += 1
+        return (
+            self._observation(obs, f"step {self._steps}"),
+            float(reward),
+            bool(terminated),
+            bool(truncated),
+        )
+
+    def _observation(self, obs: Any, where: str) -> np.ndarray:
+        try:
+            values = np.ascontiguousarray(obs, dtype=np.float64).reshape(-1)
+        except (TypeError, ValueError) as e:
+            raise EnvError(f"{self.name}: the observation after {where} is not numeric: {e}") from e
+        if values.size != self.state_dim:
+            raise EnvError(
+                f"{self.name}: the observation after {where} has {values.size} values, its space "
+                f"{self.state_dim}"
+            )
+        bad = np.flatnonzero(~np.isfinite(values))
+        if bad.size:
+            raise EnvError(
+                f"{self.name}: the observation after {where} holds {values[bad[0]]} at index "
+                f"{bad[0]}; gpfd needs finite observations"
+            )
+        return values
+
+
+def _init_worker(name: str, payload: bytes) -> None:
+    register(name, cloudpickle.loads(payload))
+
+
+def _fitness_task(task: tuple[str, bytes, int]) -> float:
+    return _core.trial_fitness(*task)
+
+
+class Evaluator:
+    """evaluate(config_text, [(genome, seed), ...]) for gpfd's discovery: run::trialFitness of
+    each genome, in this process (workers == 1) or in a pool of worker processes. The result of
+    a genome depends on its seed only, so any number of workers gives the same run."""
+
+    def __init__(self, name: str, factory: Callable[[], gym.Env], workers: int):
+        self.name = name
+        self.factory = factory
+        self.workers = workers if workers > 0 else (os.cpu_count() or 1)
+        self._pool = None
+
+    def __call__(self, config_text: str, tasks: list[tuple[bytes, int]]) -> list[float]:
+        if self.workers == 1:
+            return [_core.trial_fitness(config_text, genome, seed) for genome, seed in tasks]
+        if self._pool is None:
+            # forkserver: workers do not inherit this process' threads (oneTBB's) or state.
+            method = (
+                "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() else "spawn"
+            )
+            context = multiprocessing.get_context(method)
+            self._pool = context.Pool(
+                self.workers, _init_worker, (self.name, cloudpickle.dumps(self.factory))
+            )
+        return self._pool.map(_fitness_task, [(config_text, g, s) for g, s in tasks], chunksize=1)
+
+    def close(self) -> None:
+        if self._pool is not None:
+            self._pool.close()
+            self._pool.join()
+            self._pool = None

@@ -1,0 +1,92 @@
+"""gpfd's vector environment: N instances of one environment stepped by one C++ call per step.
+
+``gymnasium.make_vec("gpfd/CartPole-v0", num_envs=64)`` makes one (the default vectorization mode
+of gpfd's ids); every environment keyword of ``gymnasium.make`` works here too, with
+``autoreset_mode`` (Gymnasium's AutoresetMode: next step, the default, same step, or disabled).
+Instance i behaves exactly like ``gymnasium.make`` of the same id reset with seed + i and
+auto-reset by ``SyncVectorEnv``: the same observations, rewards and flags.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from gymnasium.vector import AutoresetMode, VectorEnv
+from gymnasium.vector.utils import batch_space
+
+from gpfd import _core
+from gpfd.envs import action_space, check_params, gym_id, observation_space, seed64
+
+_MODES = {
+    AutoresetMode.NEXT_STEP: "next_step",
+    AutoresetMode.SAME_STEP: "same_step",
+    AutoresetMode.DISABLED: "disabled",
+}
+
+
+class GpfdVectorEnv(VectorEnv):
+    """N instances of the gpfd environment ``gpfd_env`` (see gpfd.envs.GpfdEnv)."""
+
+    def __init__(
+        self,
+        gpfd_env: str,
+        num_envs: int = 1,
+        autoreset_mode: str | AutoresetMode = AutoresetMode.NEXT_STEP,
+        render_mode: str | None = None,
+        **params: Any,
+    ):
+        check_params(gpfd_env, params)
+        if render_mode is not None:
+            raise ValueError(f"{gym_id(gpfd_env)} does not render (render_mode={render_mode!r})")
+        mode = AutoresetMode(autoreset_mode)
+        self._core = _core.EnvBatch(gpfd_env, params, int(num_envs), _MODES[mode])
+        self.gpfd_name = gpfd_env
+        self.state_names = tuple(self._core.state_names)
+        self.params = dict(self._core.params)
+        self.num_envs = int(num_envs)
+        self.metadata = {"autoreset_mode": mode, "render_modes": []}
+        self.single_observation_space = observation_space(self._core)
+        self.single_action_space = action_space(self._core)
+        self.observation_space = batch_space(self.single_observation_space, self.num_envs)
+        self.action_space = batch_space(self.single_action_space, self.num_envs)
+        self._seeded = np.zeros(self.num_envs, dtype=bool)
+
+    def reset(self, *, seed: int | list[int | None] | None = None, options: dict | None = None):
+        """seed: None, an int (instance i gets seed + i) or one seed (or None) per instance.
+        options: ``{"reset_mask": bool array}`` resets only those instances."""
+        super().reset(seed=seed if isinstance(seed, int) else None)
+        if seed is None:
+            seeds: list[int | None] = [None] * self.num_envs
+        elif isinstance(seed, (int, np.integer)):
+            seeds = [int(seed) + i for i in range(self.num_envs)]
+        else:
+            seeds = list(seed)
+            if len(seeds) != self.num_envs:
+                raise ValueError(f"expected {self.num_envs} seeds, got {len(seeds)}")
+        mask = None
+        if options and "reset_mask" in options:
+            mask = np.ascontiguousarray(options["reset_mask"], dtype=bool)
+        for i, s in enumerate(seeds):
+            if mask is not None and not mask[i]:
+                continue
+            if s is not None:
+                self._core.seed(i, seed64(s))
+            elif not self._seeded[i]:
+                self._core.seed(i, int(self.np_random.integers(2**63)))
+            self._seeded[i] = True
+        return self._core.reset(mask), {}
+
+    def step(self, actions):
+        obs, rewards, terminated, truncated, final_obs, final_mask = self._core.step(
+            np.ascontiguousarray(actions, dtype=np.float64)
+        )
+        info: dict[str, Any] = {}
+        if final_mask is not None and final_mask.any():
+            info = {"final_obs": final_obs, "_final_obs": final_mask}
+        return obs, rewards, terminated, truncated, info
+
+    @property
+    def states(self) -> np.ndarray:
+        """The state variables of every instance (N x d, a copy)."""
+        return np.stack([self._core.state(i) for i in range(self.num_envs)])

@@ -1,0 +1,45 @@
+// python: what the binding files of the extension module gpfd._core share: their entry points and
+// the NumPy array helpers.
+#pragma once
+
+#include <nanobind/nanobind.h>
+#include <nanobind/ndarray.h>
+
+#include <cstddef>
+#include <initializer_list>
+#include <string>
+
+#include "gpfd/env/environment.hpp"
+
+namespace gpfd::python {
+
+namespace nb = nanobind;
+
+// A new C-contiguous NumPy array of `shape` that owns its (uninitialised) memory.
+template <typename T>
+nb::ndarray<nb::numpy, T> newArray(std::initializer_list<std::size_t> shape) {
+  std::size_t count = 1;
+  for (std::size_t n : shape) count *= n;
+  T* data = new T[count > 0 ? count : 1];
+  nb::capsule owner(data, [](void* p) noexcept { delete[] static_cast<T*>(p); });
+  return nb::ndarray<nb::numpy, T>(data, shape.size(), shape.begin(), owner);
+}
+
+// str(value), as Python prints it.
+inline std::string pyText(nb::handle value) {
+  return nb::cast<std::string>(nb::steal<nb::str>(PyObject_Str(value.ptr())));
+}
+
+// The numpy module (imported once by Python, then a dictionary look-up).
+inline nb::module_ numpy() { return nb::module_::import_("numpy"); }
+
+// Environment parameters given as Python keywords, as the text the registry reads: str as is,
+// bool as true/false, int and float in shortest round-trip form. TypeError for anything else.
+env::Params paramsFromDict(const nb::dict& values, const std::string& where);
+
+void bindFeatureSet(nb::module_& m);
+void bindEnvironments(nb::module_& m);
+void bindPythonEnvironments(nb::module_& m);
+void bindDiscovery(nb::module_& m);
+
+}  // namespace gpfd::python
