@@ -168,6 +168,24 @@ TEST(Evolve, RunsMakeASetThatResumes) {
   EXPECT_EQ(runGpfd("evolve --resume " + dir + " --runs 2").status, 2);
 }
 
+TEST(Evolve, PeriodicValidationKeepsEveryValidatedSetAndResumesExactly) {
+  const auto dir = freshDir("evolve-every");
+  const std::string args = "evolve " + tinyConfig() +
+                           " --quiet --set validation.every=2 --set "
+                           "validation.candidates=3 --set validation.seeds=5 --out ";
+  ASSERT_EQ(runGpfd(args + dir).status, 0);
+  // Validated after generations 1 and 3 (every 2) and at the end (5).
+  const auto csv = readText(dir + "/validation.csv");
+  for (const char* generation : {",1,", ",3,", ",5,"}) {
+    EXPECT_NE(csv.find(std::string("hall-of-fame") + generation), std::string::npos) << csv;
+  }
+  // Stopped after generation 3 (a shorter run), then extended: the same validated sets.
+  const auto shorter = freshDir("evolve-every-extended");
+  ASSERT_EQ(runGpfd(args + shorter + " --generations 4").status, 0);
+  ASSERT_EQ(runGpfd("evolve --quiet --resume " + shorter + " --generations 6").status, 0);
+  EXPECT_EQ(fingerprint(shorter), fingerprint(dir));
+}
+
 TEST(Evolve, BadDiscoveryKeysNameTheKey) {
   for (const auto& [set, key] : std::vector<std::pair<std::string, std::string>>{
            {"fitness.max_trials=1", "fitness.max_trials"},
