@@ -49,10 +49,11 @@ int fitnessNoise(const NoiseOptions& o) {
   }
   fmt::print(
       "mean variance of fitness differences over {} pairs: paired (common seeds) {:.4g}, "
-      "unpaired {:.4g}, ratio {:.3f}; lower when paired in {} of {} pairs\n",
+      "unpaired {:.4g}, ratio {:.3f}; lower when paired in {} of {} pairs; per-pair ratio "
+      "{:.3f} (geometric mean), Wilcoxon signed-rank p = {:.3g} on its logarithm\n",
       report.pairsCounted, report.meanPairedVariance, report.meanUnpairedVariance,
       report.meanPairedVariance / report.meanUnpairedVariance, report.pairsLowerWhenPaired,
-      report.pairsCounted);
+      report.pairsCounted, report.geometricMeanRatio, report.logRatioP);
   return 0;
 }
 

@@ -41,6 +41,7 @@ NoiseReport measureFitnessNoise(const ExperimentConfig& config,
     });
   });
   std::size_t counted = 0;
+  std::vector<double> logRatios;
   for (std::size_t p = 0; p < report.pairs.size(); ++p) {
     std::vector<double> a, b, paired, unpaired;
     for (const auto& f : fitness[p]) {
@@ -63,6 +64,15 @@ NoiseReport measureFitnessNoise(const ExperimentConfig& config,
     report.meanPairedVariance += pair.pairedVariance;
     report.meanUnpairedVariance += pair.unpairedVariance;
     if (pair.pairedVariance < pair.unpairedVariance) ++report.pairsLowerWhenPaired;
+    if (pair.pairedVariance > 0 && pair.unpairedVariance > 0) {
+      logRatios.push_back(std::log(pair.pairedVariance / pair.unpairedVariance));
+    }
+  }
+  double logSum = 0.0;
+  for (const double r : logRatios) logSum += r;
+  if (!logRatios.empty()) {
+    report.geometricMeanRatio = std::exp(logSum / static_cast<double>(logRatios.size()));
+    report.logRatioP = wilcoxonSignedRank(logRatios).p;
   }
   report.meanPairedVariance /= static_cast<double>(counted);
   report.meanUnpairedVariance /= static_cast<double>(counted);

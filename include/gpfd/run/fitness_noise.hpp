@@ -25,6 +25,10 @@ struct NoiseReport {
   double meanPairedVariance = 0.0, meanUnpairedVariance = 0.0;
   int pairsCounted = 0;          // Pairs without a diverged trial, over which means are taken.
   int pairsLowerWhenPaired = 0;  // Pairs whose paired variance is below the unpaired one.
+  // Over the pairs: log(paired / unpaired variance), its geometric mean as a ratio, and Wilcoxon's
+  // signed-rank test of whether it is centred on 0 (pairing neither helps nor hurts).
+  double geometricMeanRatio = 1.0;
+  double logRatioP = 1.0;
 };
 
 // For `pairs` random pairs of distinct genomes (seeded by `seed`), `replications` fitness
