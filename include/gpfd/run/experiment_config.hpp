@@ -35,7 +35,7 @@ struct ExperimentConfig {
   // many, its fitness the mean over all of them. 0: no re-evaluation (the first K decide).
   int maxTrials = 0;
   // At most this share of the population is re-evaluated per generation, best fitness first.
-  double reevaluationShare = 0.1;
+  double reevaluationShare = 0.05;
   TrialMeasure measure = TrialMeasure::Mean;
   double lastFraction = 0.25;
   bool withOriginal = false;  // The learner sees discovered + original variables.
