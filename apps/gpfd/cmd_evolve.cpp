@@ -11,6 +11,7 @@
 #include "command.hpp"
 #include "config_loading.hpp"
 #include "gpfd/run/discovery.hpp"
+#include "gpfd/util/directory_lock.hpp"
 #include "gpfd/util/error.hpp"
 #include "gpfd/version.hpp"
 
@@ -60,18 +61,10 @@ std::vector<std::string> overrides(const EvolveOptions& o) {
   return all;
 }
 
-// The default results directory: results/<name>, or results/<name>-2, -3, ... when taken, so
-// that running the same command again never collides with an earlier run.
-std::string freshResultsDir(const std::string& base) {
-  std::string dir = base;
-  for (int n = 2; std::filesystem::exists(dir); ++n) dir = base + "-" + std::to_string(n);
-  return dir;
-}
-
 int evolve(const EvolveOptions& o) {
   run::DiscoveryOptions options;
   options.outDir = o.resume.empty() ? o.out : o.resume;
-  options.threads = o.threads;
+  options.threads = threads(o.threads);
   options.version = kVersion;
   options.revision = kRevision;
 #ifdef GPFD_HAVE_MPI
@@ -88,6 +81,8 @@ int evolve(const EvolveOptions& o) {
     };
   }
 #endif
+  // One writer per results directory (held until the process ends, also by an MPI run's master).
+  std::optional<DirectoryLock> lock;
   std::unique_ptr<run::Discovery> discovery;
   if (!o.resume.empty()) {
     if (!o.env.empty() || o.seed || o.population || !o.sets.empty()) {
@@ -98,11 +93,31 @@ int evolve(const EvolveOptions& o) {
     }
     std::optional<run::ExperimentConfig> expected;
     if (!o.config.empty()) expected = loadConfig(o.config, {});
+    if (!std::filesystem::is_directory(o.resume)) {
+      throw InputError("no such results directory", "--resume " + o.resume);
+    }
+    lock.emplace(o.resume, "results directory");
     discovery = run::Discovery::resume(options, expected, o.generations);
+    if (discovery->finished()) {
+      fmt::print(stderr,
+                 "the run in {} is already complete ({} generations); pass --generations N to "
+                 "extend it\n",
+                 o.resume, discovery->config().gp.generations);
+      return 0;
+    }
   } else {
     const auto config = loadConfig(o.config, overrides(o));
-    if (options.outDir.empty()) options.outDir = freshResultsDir("results/" + config.name);
-    discovery = run::Discovery::start(config, options);
+    // The default results/<name> (or -2, -3, ... when taken) never collides with an earlier run.
+    lock.emplace(options.outDir.empty()
+                     ? DirectoryLock::lockFresh("results/" + config.name, "results directory")
+                     : DirectoryLock(options.outDir, "results directory"));
+    options.outDir = lock->directory();
+    try {
+      discovery = run::Discovery::start(config, options);
+    } catch (...) {
+      lock->removeCreatedDirectory();  // Nothing half-made is left behind.
+      throw;
+    }
   }
 
   const bool terminal = ::isatty(STDOUT_FILENO) != 0;
@@ -190,14 +205,17 @@ const CommandRegistration registration{
       cmd->add_option("config", o->config,
                       "Experiment config: a TOML file or a shipped config name "
                       "(configs/NAME.toml); default: cartpole-quick");
-      cmd->add_option("--env", o->env, "Environment (overrides env.name)");
-      cmd->add_option("--seed", o->seed, "Random seed (overrides seed)");
+      cmd->add_option("--env", o->env, "Environment (overrides env.name)")
+          ->check(environmentName());
+      cmd->add_option("--seed", o->seed, "Random seed (overrides seed)")->check(seedValue());
       cmd->add_option("--threads", o->threads,
                       "Worker threads (0: all cores); never changes results")
           ->check(threadCount());
-      cmd->add_option("--population", o->population, "Population size (overrides gp.population)");
+      cmd->add_option("--population", o->population, "Population size (overrides gp.population)")
+          ->check(bounded(2, kMaxPopulation));
       cmd->add_option("--generations", o->generations,
-                      "Generations (overrides gp.generations; may extend a resumed run)");
+                      "Generations (overrides gp.generations; may extend a resumed run)")
+          ->check(bounded(1, kMaxGenerations));
       cmd->add_option("--out", o->out,
                       "Results directory (default results/<name>, or results/<name>-N when taken)");
       cmd->add_option("--resume", o->resume, "Continue the run in this results directory");
