@@ -251,16 +251,21 @@ std::string exportPython(const Genome& genome, const VariableNames& names) {
   std::string out = kPythonPreamble;
   out += "\ndef features(s):\n    \"\"\"s[..., i] is state variable i:";
   for (std::size_t i = 0; i < names.size(); ++i) out += fmt::format(" {}={}", i, names[i]);
-  out += ".\"\"\"\n    s = np.asarray(s, dtype=np.float64)\n";
+  out += fmt::format(
+      ".\n\n    Returns one float64 array of shape s.shape[:-1] + ({},): feature k in [..., "
+      "k].\"\"\"\n",
+      genome.featureCount());
+  out += "    s = np.asarray(s, dtype=np.float64)\n";
+  out += fmt::format("    out = np.empty(s.shape[:-1] + ({},), dtype=np.float64)\n",
+                     genome.featureCount());
   out += "    with np.errstate(all=\"ignore\"):  # Overflow saturates by design.\n";
-  out += "        return [\n";
   for (std::size_t k = 0; k < genome.featureCount(); ++k) {
-    out += "            " +
+    out += fmt::format("        out[..., {}] = ", k) +
            calls(genome.feature(k), 0,
                  [&](const Node& n) { return fmt::format("_in(s[..., {}])", n.var); }) +
-           ",\n";
+           "\n";
   }
-  return out + "        ]\n";
+  return out + "    return out\n";
 }
 
 std::string exportLatex(const Genome& genome, const VariableNames& names) {
