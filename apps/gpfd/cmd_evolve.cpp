@@ -10,6 +10,7 @@
 
 #include "command.hpp"
 #include "config_loading.hpp"
+#include "gpfd/expr/genome.hpp"
 #include "gpfd/run/discovery.hpp"
 #include "gpfd/util/directory_lock.hpp"
 #include "gpfd/util/error.hpp"
@@ -107,6 +108,11 @@ int evolve(const EvolveOptions& o) {
     }
   } else {
     const auto config = loadConfig(o.config, overrides(o));
+    // Parents and offspring with every genome at its size limits.
+    requireMemory(2.0 * config.gp.population * config.limits.maxFeatures * config.limits.maxSize *
+                      static_cast<double>(sizeof(expr::Node)),
+                  "the population at its genome size limits",
+                  "gp.population x genome.max_features x genome.max_size");
     // The default results/<name> (or -2, -3, ... when taken) never collides with an earlier run.
     lock.emplace(options.outDir.empty()
                      ? DirectoryLock::lockFresh("results/" + config.name, "results directory")

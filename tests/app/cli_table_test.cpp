@@ -84,6 +84,8 @@ TEST(CliTable, BadInputIsOneErrorLineWithExitTwo) {
       // Bounded together: the memory that every run's learning curve would take.
       {"assess cartpole --raw --runs 100000 --budget 1000000",
        "the learning curves of every run would need about"},
+      {"evolve --population 1000000 --set genome.max_features=1000 --set genome.max_size=65536",
+       "the population at its genome size limits would need about"},
       {"reproduce --scale huge", "'huge' is not one of quick, paper (gpfd reproduce --scale)"},
       {"reproduce --scale papr", "(did you mean 'paper'?) (gpfd reproduce --scale)"},
       {"reproduce --threads -1", "-1 is outside [0, 4096] (gpfd reproduce --threads)"},

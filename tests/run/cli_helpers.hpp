@@ -18,9 +18,11 @@ struct CommandResult {
   std::string output;
 };
 
-inline CommandResult runGpfd(const std::string& args) {
+// Runs gpfd with `args` in the working directory `cwd` (default: the test's).
+inline CommandResult runGpfd(const std::string& args, const std::string& cwd = "") {
   CommandResult r;
-  FILE* pipe = popen((std::string(GPFD_BINARY) + " " + args + " 2>&1").c_str(), "r");
+  const std::string cd = cwd.empty() ? "" : "cd '" + cwd + "' && ";
+  FILE* pipe = popen((cd + GPFD_BINARY + " " + args + " 2>&1").c_str(), "r");
   char buffer[4096];
   while (std::fgets(buffer, sizeof buffer, pipe)) r.output += buffer;
   const int status = pclose(pipe);
