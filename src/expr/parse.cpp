@@ -168,24 +168,23 @@ class Limits {
   // built once at the end (no copying of the growing left tree at every operator).
   class Chain {
    public:
-    Chain(Limits& limits, Sub first) : limits_(limits), depth_(first.depth) {
-      size_ = first.tree.size();
-      operands_.push_back(std::move(first));
-    }
+    Chain(Limits& limits, Sub first)
+        : limits_(limits), first_(std::move(first)), depth_(first_.depth) {}
     void add(Op op, Sub operand, std::size_t at) {
       limits_.count(at);
       depth_ = limits_.checkDepth(std::max(depth_, operand.depth) + 1, at);
       size_ += 1 + operand.tree.size();
       ops_.push_back(op);
-      operands_.push_back(std::move(operand));
+      rest_.push_back(std::move(operand));
     }
     Sub finish() {
-      if (ops_.empty()) return std::move(operands_.front());
+      if (ops_.empty()) return std::move(first_);  // A lone operand: nothing allocated.
       Sub out{{}, depth_};
-      out.tree.reserve(size_);
+      out.tree.reserve(first_.tree.size() + size_);
       for (auto op = ops_.rbegin(); op != ops_.rend(); ++op)
         out.tree.push_back(Node::function(*op));
-      for (const auto& operand : operands_) {
+      out.tree.insert(out.tree.end(), first_.tree.begin(), first_.tree.end());
+      for (const auto& operand : rest_) {
         out.tree.insert(out.tree.end(), operand.tree.begin(), operand.tree.end());
       }
       return out;
@@ -193,9 +192,10 @@ class Limits {
 
    private:
     Limits& limits_;
+    Sub first_;
     std::vector<Op> ops_;
-    std::vector<Sub> operands_;
-    std::size_t size_ = 0;
+    std::vector<Sub> rest_;
+    std::size_t size_ = 0;  // Nodes of the operators and of rest_.
     int depth_ = 1;
   };
 
