@@ -15,6 +15,8 @@
 #include "gpfd/expr/features_file.hpp"
 #include "gpfd/expr/simplify.hpp"
 #include "gpfd/jit/compiled_feature_map.hpp"
+#include "gpfd/run/checkpoint.hpp"
+#include "gpfd/run/learning_task.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
 
@@ -25,8 +27,20 @@ struct FeaturesOptions {
   std::string file;
   std::string format = "infix";
   bool simplify = false;
-  std::string out;  // export only: a file instead of stdout.
+  std::string out;     // export only: a file instead of stdout.
+  bool front = false;  // show only: the run's complexity front.
 };
+
+// A features file, or a run's results directory standing for its best.features.
+std::string featuresPath(const std::string& given) {
+  if (!std::filesystem::is_directory(given)) return given;
+  if (!std::filesystem::exists(given + "/best.features")) {
+    throw InputError(
+        "a directory without best.features: give a features file or a run's results directory",
+        given);
+  }
+  return given + "/best.features";
+}
 
 struct EvalOptions {
   std::string file;
@@ -87,7 +101,7 @@ int evaluate(const EvalOptions& o) {
   if (o.state.empty() == o.states.empty()) {
     throw InputError("give either --state v1,v2,... or --states FILE", "gpfd features eval");
   }
-  const auto file = expr::readFeaturesFile(o.file);
+  const auto file = expr::readFeaturesFile(featuresPath(o.file));
   const std::size_t dim = file.variables.size();
   std::vector<std::vector<double>> states;
   if (!o.state.empty()) {
@@ -126,6 +140,24 @@ int evaluate(const EvalOptions& o) {
   return 0;
 }
 
+// A run directory stands for its best.features; --front prints its validated front instead.
+int showFront(const std::string& dir) {
+  if (!std::filesystem::is_directory(dir)) {
+    throw InputError("--front needs a run's results directory, not a file", dir);
+  }
+  const std::string path = dir + "/checkpoint.json";
+  if (!std::filesystem::exists(path)) throw InputError("no checkpoint.json: not a run", dir);
+  const auto checkpoint = run::parseCheckpoint(readFile(path), path);
+  if (checkpoint.validation.sets.empty()) {
+    throw InputError("the run has no validated sets (validation.candidates = 0, or unfinished)",
+                     dir);
+  }
+  const auto config = run::parseExperimentConfig(checkpoint.config, path + " (config)");
+  const auto names = run::LearningTask(config, run::LearningTask::Budget::Trial).stateNames();
+  fmt::print("{}", run::formatFrontTable(checkpoint.validation.sets, names));
+  return 0;
+}
+
 std::string render(const expr::FeaturesFile& file, const std::string& format) {
   const auto& g = file.genome;
   if (format == "c") return expr::exportC(g, file.variables);
@@ -141,7 +173,8 @@ std::string render(const expr::FeaturesFile& file, const std::string& format) {
 }
 
 int run(const FeaturesOptions& o) {
-  auto file = expr::readFeaturesFile(o.file);
+  if (o.front) return showFront(o.file);
+  auto file = expr::readFeaturesFile(featuresPath(o.file));
   if (o.simplify) file.genome = expr::simplify(file.genome);
   const std::string text = render(file, o.format);
   if (o.out.empty()) {
@@ -155,7 +188,8 @@ int run(const FeaturesOptions& o) {
 CLI::App* addCommand(CLI::App& parent, const char* name, const char* help,
                      std::vector<std::string> formats, std::shared_ptr<FeaturesOptions> o) {
   auto* cmd = parent.add_subcommand(name, help);
-  cmd->add_option("file", o->file, "Features file")->required();
+  cmd->add_option("file", o->file, "Features file, or a run's directory (its best.features)")
+      ->required();
   std::string list;
   for (const auto& f : formats) list += (list.empty() ? "" : "|") + f;
   cmd->add_option("--format", o->format, list)->check(oneOf(formats))->capture_default_str();
@@ -170,6 +204,8 @@ const CommandRegistration registration{
       auto show = std::make_shared<FeaturesOptions>();
       auto* showCmd = addCommand(*cmd, "show", "Print the features of a features file",
                                  {"infix", "sexpr"}, show);
+      showCmd->add_flag("--front", show->front,
+                        "Print a run's complexity front: the best validated set at each size");
       auto exported = std::make_shared<FeaturesOptions>();
       auto* exportCmd =
           addCommand(*cmd, "export", "Export features as infix, S-expressions, C, NumPy or LaTeX",
@@ -178,7 +214,7 @@ const CommandRegistration registration{
       auto eval = std::make_shared<EvalOptions>();
       auto* evalCmd = cmd->add_subcommand(
           "eval", "Print the feature values (as the JIT computes them) at given states, as CSV");
-      evalCmd->add_option("file", eval->file, "Features file")->required();
+      evalCmd->add_option("file", eval->file, "Features file, or a run's directory")->required();
       evalCmd->add_option("--state", eval->state, "One state: v1,v2,...");
       evalCmd->add_option("--states", eval->states,
                           "CSV file (- for stdin) whose header names the variables, e.g. the "

@@ -29,6 +29,9 @@ struct ReproduceCli {
   int threads = 0;
   bool quiet = false;
   bool skipFourier = false;
+  int gpRuns = 1;
+  std::vector<std::string> sets;
+  std::string baseline;
 };
 
 // Runs this same program's `bench jit` (its AOT reference lives in the tool).
@@ -57,6 +60,9 @@ int reproduceCommand(const ReproduceCli& c) {
   o.revision = kRevision;
   o.quiet = c.quiet;
   o.skipFourier = c.skipFourier;
+  o.gpRuns = c.gpRuns;
+  o.overrides = c.sets;
+  o.baselineDir = c.baseline;
   o.stop = &stopRequested;
   o.loadConfig = [](const std::string& name, const std::vector<std::string>& overrides) {
     return loadConfig(name, overrides);
@@ -94,6 +100,18 @@ const CommandRegistration registration{
       cmd->add_flag("--quiet", c->quiet, "No progress output");
       cmd->add_flag("--skip-fourier", c->skipFourier,
                     "Leave out the Fourier-basis assessments (a later run adds them)");
+      cmd->add_option("--gp-runs", c->gpRuns,
+                      "Independent GP runs per benchmark (1-100), each assessed against the "
+                      "original variables; the report gives the method-level verdict")
+          ->check(bounded(1, 100))
+          ->capture_default_str();
+      cmd->add_option("--set", c->sets,
+                      "Override a key of every benchmark's config: --set validation.candidates=0")
+          ->allow_extra_args(false);
+      cmd->add_option("--baseline", c->baseline,
+                      "An earlier reproduction's output directory to compare the method-level "
+                      "results with")
+          ->check(CLI::ExistingDirectory);
       return [c] { return reproduceCommand(*c); };
     }};
 

@@ -55,10 +55,11 @@ std::vector<double> operatorProbabilities(const GpConfig& c) {
           share(c.nodeMutationWeight), share(c.treeMutationWeight), share(c.shrinkageWeight)};
 }
 
-Evolution::Evolution(GpConfig config, SearchSpace space, Evaluator& evaluator)
+Evolution::Evolution(GpConfig config, SearchSpace space, Evaluator& evaluator, GenomeReducer reduce)
     : config_(config),
       space_(std::move(space)),
       evaluator_(evaluator),
+      reduce_(std::move(reduce)),
       rng_(deriveSeed(config.seed, kVariationStream)) {
   validate(config_);
 }
@@ -68,9 +69,9 @@ GenerationStats Evolution::initialize() {
   generation_ = 0;
   population_.clear();
   for (int i = 0; i < config_.population; ++i) {
-    population_.push_back({randomGenome(rng_, space_), 0.0, 0.0});
+    population_.push_back({reduced(randomGenome(rng_, space_)), 0.0, 0.0});
   }
-  return evaluateFrom(0, start);
+  return evaluate(start);
 }
 
 GenerationStats Evolution::step() {
@@ -86,10 +87,10 @@ GenerationStats Evolution::step() {
   next.reserve(population_.size());
   for (std::size_t e = 0; e < elites; ++e) next.push_back(population_[order[e]]);
   auto children = breed(population_.size() - elites);
-  for (auto& g : children) next.push_back({std::move(g), 0.0, 0.0});
+  for (auto& g : children) next.push_back({reduced(std::move(g)), 0.0, 0.0});
   population_ = std::move(next);
   ++generation_;
-  return evaluateFrom(elites, start);
+  return evaluate(start);
 }
 
 void Evolution::run(const std::function<bool(const GenerationStats&)>& onGeneration) {
@@ -168,18 +169,24 @@ std::vector<expr::Genome> Evolution::breed(std::size_t count) {
   return children;
 }
 
-GenerationStats Evolution::evaluateFrom(std::size_t from, double startSeconds) {
+expr::Genome Evolution::reduced(expr::Genome genome) const {
+  return reduce_ ? reduce_(genome) : genome;
+}
+
+GenerationStats Evolution::evaluate(double startSeconds) {
   std::vector<const expr::Genome*> genomes;
   std::vector<std::uint64_t> seeds;
-  for (std::size_t i = from; i < population_.size(); ++i) {
+  for (std::size_t i = 0; i < population_.size(); ++i) {
     genomes.push_back(&population_[i].genome);
-    seeds.push_back(deriveSeed(config_.seed, kEvaluationStream, generation_, i));
+    seeds.push_back(config_.commonRandomNumbers
+                        ? deriveSeed(config_.seed, kEvaluationStream, generation_)
+                        : deriveSeed(config_.seed, kEvaluationStream, generation_, i));
   }
   const auto raw = evaluator_.evaluate(genomes, seeds);
   constexpr double worst = -std::numeric_limits<double>::infinity();
-  for (std::size_t i = from; i < population_.size(); ++i) {
+  for (std::size_t i = 0; i < population_.size(); ++i) {
     Individual& ind = population_[i];
-    const double r = raw[i - from];
+    const double r = raw[i];
     ind.rawFitness = std::isfinite(r) ? r : worst;
     ind.fitness =
         std::isfinite(r) ? r - config_.sizePenalty * static_cast<double>(ind.genome.size()) : worst;

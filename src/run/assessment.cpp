@@ -11,6 +11,7 @@
 #include "gpfd/rl/fourier_basis.hpp"
 #include "gpfd/run/state_ranges.hpp"
 #include "gpfd/util/atomic_file.hpp"
+#include "gpfd/util/error.hpp"
 
 namespace gpfd::run {
 
@@ -137,6 +138,32 @@ void writeAssessment(const std::string& dir, const AssessmentResult& result,
   writeFileAtomically(dir + "/summary.csv", csv);
   writeFileAtomically(dir + "/summary.md", md);
   io::plotLines(dir + "/curves", plot);
+}
+
+std::vector<SetFinals> readFinals(const std::string& dir) {
+  const std::string path = dir + "/finals.csv";
+  std::istringstream in(readFile(path));
+  std::string line;
+  std::getline(in, line);  // Header.
+  std::vector<SetFinals> sets;
+  while (std::getline(in, line)) {
+    // set,run,final,area: the set's name may hold commas, the numbers do not.
+    const std::size_t areaAt = line.rfind(',');
+    const std::size_t finalAt = line.rfind(',', areaAt - 1);
+    const std::size_t runAt = line.rfind(',', finalAt - 1);
+    if (runAt == std::string::npos || areaAt == std::string::npos) {
+      throw InputError("not a finals table: " + line, path);
+    }
+    const std::string name = line.substr(0, runAt);
+    if (sets.empty() || sets.back().name != name) sets.push_back({name, {}, {}});
+    try {
+      sets.back().finals.push_back(std::stod(line.substr(finalAt + 1, areaAt - finalAt - 1)));
+      sets.back().areas.push_back(std::stod(line.substr(areaAt + 1)));
+    } catch (const std::logic_error&) {
+      throw InputError("not a finals table: " + line, path);
+    }
+  }
+  return sets;
 }
 
 std::vector<std::vector<std::string>> readSummaryTable(const std::string& dir) {

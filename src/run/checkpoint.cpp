@@ -14,7 +14,7 @@ namespace gpfd::run {
 namespace {
 
 using nlohmann::json;
-constexpr const char* kFormat = "gpfd-checkpoint-1";
+constexpr const char* kFormat = "gpfd-checkpoint-2";
 
 // Doubles round-trip exactly through JSON numbers; -inf (the worst fitness) is stored as null.
 json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
@@ -48,7 +48,20 @@ std::string formatCheckpoint(const Checkpoint& c) {
                           {"fitness", number(ind.fitness)}});
   }
   json cache = json::array();
-  for (const auto& [key, value] : c.cache) cache.push_back({key, number(value)});
+  for (const auto& [key, record] : c.cache) {
+    cache.push_back({key, number(record.mean), record.trials});
+  }
+  json validated = json::array();
+  for (const auto& set : c.validation.sets) {
+    json scores = json::array();
+    for (const double v : set.scores) scores.push_back(number(v));
+    validated.push_back(
+        {{"key", set.key},
+         {"generation", set.generation},
+         {"gp_fitness", std::isnan(set.gpFitness) ? json("nan") : number(set.gpFitness)},
+         {"gp_trials", set.gpTrials},
+         {"scores", scores}});
+  }
   json history = json::array();
   for (const auto& r : c.history) {
     history.push_back({{"generation", r.generation},
@@ -58,6 +71,7 @@ std::string formatCheckpoint(const Checkpoint& c) {
                        {"mean_size", r.meanSize},
                        {"mean_features", r.meanFeatures},
                        {"evaluations", r.evaluations},
+                       {"reevaluations", r.reevaluations},
                        {"cache_hits", r.cacheHits},
                        {"seconds", r.seconds},
                        {"best_genome", genomeJson(r.bestGenome)}});
@@ -74,7 +88,11 @@ std::string formatCheckpoint(const Checkpoint& c) {
             {"operator_counts", c.state.operatorCounts},
             {"population", population},
             {"cache", cache},
-            {"history", history}};
+            {"history", history},
+            {"validation",
+             {{"sets", validated},
+              {"final_generation", c.validation.finalGeneration},
+              {"seconds", c.validation.seconds}}}};
   return j.dump(1) + "\n";
 }
 
@@ -96,15 +114,31 @@ Checkpoint parseCheckpoint(const std::string& text, const std::string& source) {
           {genomeFrom(ind.at("features")), number(ind.at("raw")), number(ind.at("fitness"))});
     }
     for (const auto& entry : j.at("cache")) {
-      c.cache[entry.at(0).get<std::string>()] = number(entry.at(1));
+      c.cache[entry.at(0).get<std::string>()] = {number(entry.at(1)), entry.at(2).get<int>()};
     }
     for (const auto& r : j.at("history")) {
       c.history.push_back({r.at("generation").get<int>(), number(r.at("best")),
                            number(r.at("mean")), number(r.at("median")),
                            r.at("mean_size").get<double>(), r.at("mean_features").get<double>(),
-                           r.at("evaluations").get<int>(), r.at("cache_hits").get<int>(),
-                           r.at("seconds").get<double>(), genomeFrom(r.at("best_genome"))});
+                           r.at("evaluations").get<int>(), r.at("reevaluations").get<int>(),
+                           r.at("cache_hits").get<int>(), r.at("seconds").get<double>(),
+                           genomeFrom(r.at("best_genome"))});
     }
+    const auto& validation = j.at("validation");
+    for (const auto& v : validation.at("sets")) {
+      ValidatedSet set;
+      set.key = v.at("key").get<std::string>();
+      if (!set.key.empty()) set.genome = gp::genomeFromKey(set.key);
+      set.generation = v.at("generation").get<int>();
+      const auto& fitness = v.at("gp_fitness");
+      set.gpFitness =
+          fitness.is_string() ? std::numeric_limits<double>::quiet_NaN() : number(fitness);
+      set.gpTrials = v.at("gp_trials").get<int>();
+      for (const auto& score : v.at("scores")) set.scores.push_back(number(score));
+      c.validation.sets.push_back(std::move(set));
+    }
+    c.validation.finalGeneration = validation.at("final_generation").get<int>();
+    c.validation.seconds = validation.at("seconds").get<double>();
     return c;
   } catch (const json::exception& e) {
     // The parser quotes what it last read, which can be the whole stored config: cut it.
@@ -120,10 +154,12 @@ Checkpoint parseCheckpoint(const std::string& text, const std::string& source) {
 
 std::string formatGenerationsCsv(const std::vector<GenerationRecord>& history) {
   std::string out =
-      "generation,best,mean,median,mean_size,mean_features,evaluations,cache_hits,seconds\n";
+      "generation,best,mean,median,mean_size,mean_features,evaluations,reevaluations,cache_hits,"
+      "seconds\n";
   for (const auto& r : history) {
-    out += fmt::format("{},{},{},{},{},{},{},{},{:.3f}\n", r.generation, r.best, r.mean, r.median,
-                       r.meanSize, r.meanFeatures, r.evaluations, r.cacheHits, r.seconds);
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{:.3f}\n", r.generation, r.best, r.mean,
+                       r.median, r.meanSize, r.meanFeatures, r.evaluations, r.reevaluations,
+                       r.cacheHits, r.seconds);
   }
   return out;
 }

@@ -2,18 +2,34 @@
 
 #include <fmt/format.h>
 
+#include <chrono>
+#include <cmath>
 #include <filesystem>
 
 #include "gpfd/expr/features_file.hpp"
 #include "gpfd/expr/simplify.hpp"
 #include "gpfd/gp/fitness_cache.hpp"
 #include "gpfd/run/learning_task.hpp"
+#include "gpfd/run/redundancy.hpp"
 #include "gpfd/run/thread_evaluator.hpp"
+#include "gpfd/run/validation.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::run {
 namespace fs = std::filesystem;
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+gp::GenomeReducer reducer(const ExperimentConfig& config, const LearningTask& task) {
+  if (!config.dropRedundant) return {};
+  return RedundancyFilter(task.stateSample(), config.withOriginal, config.limits.minFeatures);
+}
+
+}  // namespace
 
 struct Discovery::State {
   ExperimentConfig config;
@@ -26,6 +42,8 @@ struct Discovery::State {
   gp::CachingEvaluator cache;
   gp::Evolution evolution;
   std::vector<GenerationRecord> history;
+  ValidationState validation;
+  std::unique_ptr<Validator> validator;  // Made when first needed.
 
   State(const ExperimentConfig& c, const DiscoveryOptions& o)
       : config(c),
@@ -33,8 +51,10 @@ struct Discovery::State {
         configText(formatExperimentConfig(c)),
         task(c, LearningTask::Budget::Trial),
         evaluator(makeEvaluator()),
-        cache(*evaluator),
-        evolution(gpConfig(c), searchSpace(c, static_cast<int>(task.stateDim())), cache) {}
+        cache(*evaluator, c.trials, c.maxTrials,
+              static_cast<int>(std::lround(c.reevaluationShare * c.gp.population))),
+        evolution(gpConfig(c), searchSpace(c, static_cast<int>(task.stateDim())), cache,
+                  reducer(c, task)) {}
 
   std::unique_ptr<gp::Evaluator> makeEvaluator() {
     if (options.makeEvaluator) {
@@ -66,6 +86,12 @@ struct Discovery::State {
     return file;
   }
 
+  void writeCheckpoint() const {
+    const Checkpoint checkpoint{options.version, configText, evolution.state(),
+                                cache.entries(), history,    validation};
+    writeFileAtomically(path("checkpoint.json"), formatCheckpoint(checkpoint));
+  }
+
   // Writes the generation's files, then the checkpoint (all atomically).
   void persist(const gp::GenerationStats& stats) {
     GenerationRecord record{stats.generation,
@@ -75,6 +101,7 @@ struct Discovery::State {
                             stats.meanSize,
                             stats.meanFeatures,
                             cache.lastEvaluated(),
+                            cache.lastReevaluated(),
                             cache.lastHits(),
                             stats.seconds,
                             stats.bestIndividual.genome};
@@ -84,8 +111,57 @@ struct Discovery::State {
     writeFeaturesFile(path(fmt::format("best/generation-{:04d}.features", stats.generation)), best);
     writeFeaturesFile(path("best.features"), featuresFile(evolution.best()));
     writeFileAtomically(path("generations.csv"), formatGenerationsCsv(history));
-    Checkpoint checkpoint{options.version, configText, evolution.state(), cache.entries(), history};
-    writeFileAtomically(path("checkpoint.json"), formatCheckpoint(checkpoint));
+    writeCheckpoint();
+  }
+
+  bool validating() const { return config.validation.candidates > 0; }
+  bool generationsDone() const { return evolution.generation() + 1 >= config.gp.generations; }
+
+  // Scores the hall of fame members (and the original variables) not validated yet.
+  void validateHallOfFame() {
+    const auto start = std::chrono::steady_clock::now();
+    if (!validator) validator = std::make_unique<Validator>(config, threads);
+    std::vector<ValidatedSet> fresh;
+    const auto known = [&](const std::string& key) {
+      for (const auto& s : validation.sets) {
+        if (s.key == key) return true;
+      }
+      return false;
+    };
+    if (!known("")) fresh.push_back({});  // The original variables.
+    for (auto& entry :
+         hallOfFame(cache.entries(), config.validation.candidates, config.gp.sizePenalty)) {
+      if (known(entry.key)) continue;
+      fresh.push_back({entry.key,
+                       std::move(entry.genome),
+                       evolution.generation(),
+                       entry.fitness,
+                       entry.trials,
+                       {}});
+    }
+    std::vector<const expr::Genome*> genomes;
+    for (const auto& set : fresh) genomes.push_back(set.isOriginal() ? nullptr : &set.genome);
+    auto scores = validator->score(genomes);
+    for (std::size_t i = 0; i < fresh.size(); ++i) {
+      fresh[i].scores = std::move(scores[i]);
+      validation.sets.push_back(std::move(fresh[i]));
+    }
+    validation.seconds += secondsSince(start);
+    writeFileAtomically(path("validation.csv"),
+                        formatValidationCsv(validation.sets, task.stateNames()));
+  }
+
+  // The final choice: best.features becomes the validation winner; front.csv the size front.
+  void chooseValidated() {
+    validateHallOfFame();
+    const std::size_t winner = chooseWinner(validation.sets, task.stateDim());
+    const auto& set = validation.sets[winner];
+    writeFeaturesFile(path("best.features"),
+                      winnerFeaturesFile(validation.sets, winner,
+                                         expr::simplify(task.prepared(set.genome)), task));
+    writeFileAtomically(path("front.csv"), formatFrontCsv(validation.sets, task.stateNames()));
+    validation.finalGeneration = evolution.generation();
+    writeCheckpoint();
   }
 };
 
@@ -164,25 +240,36 @@ std::unique_ptr<Discovery> Discovery::resume(const DiscoveryOptions& options,
   state->evolution.restore(checkpoint.state);
   state->cache.setEntries(std::move(checkpoint.cache));
   state->history = std::move(checkpoint.history);
+  state->validation = std::move(checkpoint.validation);
   return std::unique_ptr<Discovery>(new Discovery(std::move(state)));
 }
 
 void Discovery::run(const std::function<void(const GenerationRecord&)>& onGeneration,
                     const std::atomic<bool>& stop) {
   auto& evolution = s_->evolution;
-  while (!finished() && !stop.load()) {
+  const int every = s_->config.validation.every;
+  while (!s_->generationsDone() && !stop.load()) {
     s_->done.store(0);
     const auto stats = evolution.generation() < 0 ? evolution.initialize() : evolution.step();
     s_->persist(stats);
     onGeneration(s_->history.back());
+    if (s_->validating() && every > 0 && (stats.generation + 1) % every == 0 &&
+        !s_->generationsDone()) {
+      s_->validateHallOfFame();
+      s_->writeCheckpoint();
+    }
   }
+  if (!finished() && s_->generationsDone() && !stop.load()) s_->chooseValidated();
 }
 
 const ExperimentConfig& Discovery::config() const { return s_->config; }
+std::size_t Discovery::stateDim() const { return s_->task.stateDim(); }
 const std::vector<GenerationRecord>& Discovery::history() const { return s_->history; }
 bool Discovery::finished() const {
-  return s_->evolution.generation() + 1 >= s_->config.gp.generations;
+  return s_->generationsDone() &&
+         (!s_->validating() || s_->validation.finalGeneration == s_->evolution.generation());
 }
+const ValidationState& Discovery::validation() const { return s_->validation; }
 long Discovery::progress() const { return s_->done.load(std::memory_order_relaxed); }
 int Discovery::populationSize() const { return s_->config.gp.population; }
 

@@ -27,10 +27,15 @@ void visit(V& v, ExperimentConfig& c) {
   v.text("learner", "name", c.learner, {"pg", "lpi"});
   v.params("learner.params", c.learnerParams);
   v.integer("fitness", "trials", c.trials, 1, 1000);
+  v.integer("fitness", "max_trials", c.maxTrials, 0, 100000);
+  v.real("fitness", "reevaluation_share", c.reevaluationShare, 0.0, 1.0);
+  v.boolean("fitness", "common_seeds", c.gp.commonRandomNumbers);
   v.measure("fitness", "measure", c.measure);
   v.real("fitness", "last_fraction", c.lastFraction, 1e-9, 1.0);
   v.real("fitness", "size_penalty", c.gp.sizePenalty, 0.0, 1e6);
   v.boolean("fitness", "with_original", c.withOriginal);
+  v.boolean("fitness", "normalise", c.normalise);
+  v.integer("fitness", "state_sample", c.stateSample, 16, 100000);
   v.text("primitives", "set", c.primitives);
   v.reals("primitives", "constants", c.constants);
   v.boolean("primitives", "ephemeral", c.ephemeral);
@@ -42,6 +47,7 @@ void visit(V& v, ExperimentConfig& c) {
   v.integer("genome", "init_max_depth", c.initMaxDepth, 1, 64);
   v.integer("genome", "init_max_features", c.initMaxFeatures, 1, 1000);
   v.integer("genome", "mutation_depth", c.mutationDepth, 1, 64);
+  v.boolean("genome", "drop_redundant", c.dropRedundant);
   v.integer("gp", "population", c.gp.population, 2, 1000000);
   v.integer("gp", "generations", c.gp.generations, 1, 1000000);
   v.real("gp", "crossover", c.gp.crossoverRate, 0.0, 1.0);
@@ -51,6 +57,10 @@ void visit(V& v, ExperimentConfig& c) {
   v.real("gp", "shrinkage_weight", c.gp.shrinkageWeight, 0.0, 1e6);
   v.real("gp", "elitism", c.gp.elitism, 0.0, 0.99);
   v.integer("gp", "tournament_size", c.gp.tournamentSize, 1, 1000);
+  v.integer("validation", "candidates", c.validation.candidates, 0, 1000);
+  v.integer("validation", "seeds", c.validation.seeds, 2, 100000);
+  v.integer("validation", "every", c.validation.every, 0, 1000000);
+  v.params("validation.params", c.validation.params);
   v.integer("assess", "runs", c.assessRuns, 1, 100000);
   v.params("assess.params", c.assessParams);
 }
@@ -164,6 +174,11 @@ void validateAt(const ExperimentConfig& c, const Place& place) {
   registry.make(c.env, c.envParams);  // Parameters that are only wrong together.
   checkLearnerParams(c, "learner.params", c.learnerParams, place);
   checkLearnerParams(c, "assess.params", c.assessParams, place);
+  checkLearnerParams(c, "validation.params", c.validation.params, place);
+  require(c.maxTrials == 0 || c.maxTrials >= c.trials,
+          "fitness.max_trials must be 0 (no re-evaluation) or at least fitness.trials (" +
+              std::to_string(c.trials) + ")",
+          place("fitness", "max_trials"));
   try {
     expr::PrimitiveSet::named(c.primitives);
   } catch (const InputError& e) {

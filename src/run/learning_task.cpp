@@ -9,12 +9,14 @@
 #include "gpfd/rl/learner_params.hpp"
 #include "gpfd/rl/policy_gradient.hpp"
 #include "gpfd/rl/tetris_afterstates.hpp"
+#include "gpfd/run/redundancy.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::run {
 namespace {
 
 constexpr double kWorst = -std::numeric_limits<double>::infinity();
+constexpr std::uint64_t kStateSampleStream = 0x5a3;
 
 }  // namespace
 
@@ -23,7 +25,25 @@ LearningTask::LearningTask(const ExperimentConfig& config, Budget budget)
   if (budget == Budget::Assessment) {
     for (const auto& [k, v] : config.assessParams) learnerParams_[k] = v;
   }
-  stateNames_ = env::Registry::global().make(config_.env, config_.envParams)->stateNames();
+  if (budget == Budget::Validation) {
+    for (const auto& [k, v] : config.validation.params) learnerParams_[k] = v;
+  }
+  auto environment = env::Registry::global().make(config_.env, config_.envParams);
+  stateNames_ = environment->stateNames();
+  if (config_.dropRedundant || config_.normalise) {
+    sample_ = std::make_shared<const FeatureSample>(
+        sampleVisitedStates(*environment, static_cast<std::size_t>(config_.stateSample),
+                            deriveSeed(config_.seed, kStateSampleStream)),
+        stateDim());
+  }
+}
+
+expr::Genome LearningTask::prepared(const expr::Genome& genome) const {
+  return config_.normalise ? normaliseFeatures(genome, *sample_) : genome;
+}
+
+std::shared_ptr<const jit::FeatureMap> LearningTask::featureMap(const expr::Genome& genome) const {
+  return genomeFeatureMap(prepared(genome), stateDim(), config_.withOriginal);
 }
 
 rl::LearningCurve LearningTask::train(const jit::FeatureMap& map, Rng& rng) const {
@@ -68,8 +88,26 @@ double LearningTask::score(const rl::LearningCurve& curve) const {
   return std::isfinite(mean) ? mean : kWorst;
 }
 
+namespace {
+
+// Whether the genome's features are the state variables themselves, in order.
+bool isIdentity(const expr::Genome& genome, std::size_t stateDim) {
+  if (genome.featureCount() != stateDim || genome.size() != stateDim) return false;
+  for (std::size_t i = 0; i < stateDim; ++i) {
+    const auto& node = genome.nodes()[i];
+    if (node.op != expr::Op::Var || node.var != i) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 std::shared_ptr<const jit::FeatureMap> genomeFeatureMap(const expr::Genome& genome,
                                                         std::size_t stateDim, bool withOriginal) {
+  // The original variables added to themselves would only repeat every column.
+  if (withOriginal && isIdentity(genome, stateDim)) {
+    return std::make_shared<const jit::RawFeatureMap>(stateDim);
+  }
   auto compiled = std::make_shared<const jit::CompiledFeatureMap>(genome, stateDim);
   if (!withOriginal) return compiled;
   return std::make_shared<const jit::ConcatFeatureMap>(
@@ -78,7 +116,7 @@ std::shared_ptr<const jit::FeatureMap> genomeFeatureMap(const expr::Genome& geno
 }
 
 double trialFitness(const LearningTask& task, const expr::Genome& genome, Rng& rng) {
-  const auto map = genomeFeatureMap(genome, task.stateDim(), task.config().withOriginal);
+  const auto map = task.featureMap(genome);
   const std::uint64_t base = rng();
   double sum = 0.0;
   for (int t = 0; t < task.config().trials; ++t) {

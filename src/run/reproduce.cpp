@@ -5,6 +5,8 @@
 #include <chrono>
 #include <filesystem>
 #include <map>
+#include <optional>
+#include <sstream>
 
 #include "gpfd/expr/features_file.hpp"
 #include "gpfd/expr/parse.hpp"
@@ -12,6 +14,9 @@
 #include "gpfd/io/report.hpp"
 #include "gpfd/run/assessment.hpp"
 #include "gpfd/run/discovery.hpp"
+#include "gpfd/run/method_verdict.hpp"
+#include "gpfd/run/run_set.hpp"
+#include "gpfd/run/validation.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/directory_lock.hpp"
 #include "gpfd/util/error.hpp"
@@ -37,9 +42,11 @@ class Experiment {
   // Compute time of the experiment's steps, whether they ran now or in an earlier invocation:
   // the GP runs' generation times and the assessments' recorded times.
   double evolveSeconds() const { return evolveSeconds_; }
+  double validationSeconds() const { return validationSeconds_; }
   double assessSeconds() const { return assessSeconds_; }
 
   ExperimentConfig config(const std::string& base, std::vector<std::string> overrides = {}) const {
+    overrides.insert(overrides.begin(), o_.overrides.begin(), o_.overrides.end());
     overrides.push_back("seed=" + std::to_string(o_.seed));
     return o_.loadConfig(o_.paperScale ? base : base + "-quick", overrides);
   }
@@ -57,8 +64,7 @@ class Experiment {
     d.threads = o_.threads;
     d.version = o_.version;
     d.revision = o_.revision;
-    auto run = fs::exists(dir + "/config.toml") ? Discovery::resume(d, config, std::nullopt)
-                                                : Discovery::start(config, d);
+    auto run = startOrResume(config, d);
     static const std::atomic<bool> never{false};
     run->run(
         [&](const GenerationRecord& r) {
@@ -71,7 +77,34 @@ class Experiment {
         o_.stop ? *o_.stop : never);
     checkStop(dir);
     for (const auto& r : run->history()) evolveSeconds_ += r.seconds;
+    validationSeconds_ += run->validation().seconds;
+    outcomes_[name] = outcomeOf(*run, 1);
     return histories_[name] = run->history();
+  }
+
+  // What the GP run in dir()/name returned (evolve() it first).
+  const RunOutcome& outcome(const std::string& name) const { return outcomes_.at(name); }
+
+  // The trial score of the run's returned features on fresh seeds (Validator's re-measuring
+  // stream), cached in dir()/name/remeasured.csv.
+  Summary remeasure(const ExperimentConfig& config, const std::string& name,
+                    const expr::Genome& returned) {
+    const std::string path = dir_ + "/" + name + "/remeasured.csv";
+    std::vector<double> scores;
+    if (fs::exists(path)) {
+      std::istringstream in(readFile(path));
+      for (std::string line; std::getline(in, line);) {
+        if (!line.empty() && line != "score") scores.push_back(std::stod(line));
+      }
+      return summarize(scores);
+    }
+    const Validator validator(config, o_.threads, Validator::kRemeasureStream);
+    scores = validator.score(std::vector<std::shared_ptr<const jit::FeatureMap>>{
+        genomeFeatureMap(returned, validator.task().stateDim(), config.withOriginal)})[0];
+    std::string csv = "score\n";
+    for (const double v : scores) csv += fmt::format("{}\n", v);
+    writeFileAtomically(path, csv);
+    return summarize(scores);
   }
 
   // The discovered features of the GP run in dir()/name.
@@ -110,8 +143,10 @@ class Experiment {
   const ReproduceOptions& o_;
   std::string dir_;
   double evolveSeconds_ = 0.0;
+  double validationSeconds_ = 0.0;
   double assessSeconds_ = 0.0;
   std::map<std::string, std::vector<GenerationRecord>> histories_;  // GP runs done, by name.
+  std::map<std::string, RunOutcome> outcomes_;                      // Their outcomes, by name.
 };
 
 // GP fitness per generation: best (and mean) of each run.
@@ -145,19 +180,31 @@ std::string joined(const std::map<std::string, std::string>& params) {
 
 // The settings of a benchmark experiment, for the report.
 std::vector<std::vector<std::string>> settingsTable(const ExperimentConfig& c) {
-  return {{"setting", "value"},
-          {"config", "`" + c.name + "` (seed " + std::to_string(c.seed) + ")"},
-          {"environment", c.env + " (" + joined(c.envParams) + ")"},
-          {"learner, short trial", c.learner + " (" + joined(c.learnerParams) + ")"},
-          {"trials per fitness", std::to_string(c.trials)},
-          {"GP", fmt::format("population {}, {} generations, crossover {}, elitism {}, "
-                             "tournament {}, size penalty {} per node",
-                             c.gp.population, c.gp.generations, c.gp.crossoverRate, c.gp.elitism,
-                             c.gp.tournamentSize, c.gp.sizePenalty)},
-          {"primitives", c.primitives + (c.withOriginal ? " (features added to the variables)"
-                                                        : " (features replace the variables)")},
-          {"long test",
-           fmt::format("{} runs per feature set ({})", c.assessRuns, joined(c.assessParams))}};
+  return {
+      {"setting", "value"},
+      {"config", "`" + c.name + "` (seed " + std::to_string(c.seed) + ")"},
+      {"environment", c.env + " (" + joined(c.envParams) + ")"},
+      {"learner, short trial", c.learner + " (" + joined(c.learnerParams) + ")"},
+      {"trials per fitness",
+       c.maxTrials > 0 ? fmt::format("{}, re-evaluated up to {} per genome", c.trials, c.maxTrials)
+                       : std::to_string(c.trials)},
+      {"feature sets",
+       std::string(c.dropRedundant ? "redundant features dropped" : "redundant features kept") +
+           (c.normalise ? ", normalised" : "") +
+           (c.gp.commonRandomNumbers ? ", common seeds per generation" : "")},
+      {"validation",
+       c.validation.candidates > 0
+           ? fmt::format("hall of fame of {} + the original variables, {} seeds ({})",
+                         c.validation.candidates, c.validation.seeds, joined(c.validation.params))
+           : "none (the GP's best is returned)"},
+      {"GP", fmt::format("population {}, {} generations, crossover {}, elitism {}, "
+                         "tournament {}, size penalty {} per node",
+                         c.gp.population, c.gp.generations, c.gp.crossoverRate, c.gp.elitism,
+                         c.gp.tournamentSize, c.gp.sizePenalty)},
+      {"primitives", c.primitives + (c.withOriginal ? " (features added to the variables)"
+                                                    : " (features replace the variables)")},
+      {"long test",
+       fmt::format("{} runs per feature set ({})", c.assessRuns, joined(c.assessParams))}};
 }
 
 std::string featuresText(const expr::FeaturesFile& f) {
@@ -168,21 +215,55 @@ std::string featuresText(const expr::FeaturesFile& f) {
   return text;
 }
 
-// A benchmark experiment: GP run, assessment of the discovered features against the original
-// variables (and a Fourier basis for the control tasks), and the report section.
+// The method-level results of an earlier reproduction for a benchmark, when there are some.
+std::optional<MethodVerdict> baselineVerdict(const ReproduceOptions& o, const std::string& figure,
+                                             const std::string& name) {
+  if (o.baselineDir.empty()) return std::nullopt;
+  const std::string path = o.baselineDir + "/" + figure + "/method-" + name + ".csv";
+  if (!fs::exists(path)) return std::nullopt;
+  Summary originalFinal, originalArea;
+  const auto runs = parseMethodCsv(readFile(path), path, originalFinal, originalArea);
+  return methodVerdict(runs, originalFinal, originalArea);
+}
+
+// A benchmark experiment: o.gpRuns GP runs, assessment of each run's returned features against
+// the original variables (and a Fourier basis for the control tasks), the method-level verdict
+// and the report section.
 io::Report benchmark(Experiment& e, const ExperimentConfig& config, const std::string& heading,
                      const std::string& description, bool withFourier,
                      std::vector<FeatureSet> extraSets = {}) {
+  const int runs = e.options().gpRuns;
   const std::string evolveName = "evolve-" + config.name;
-  const auto& history = e.evolve(config, evolveName);
+  const std::string figure = fs::path(e.dir()).filename().string();
   const LearningTask task(config, LearningTask::Budget::Assessment);
-  const auto features = e.discovered(evolveName, task);
   const FeatureSet original{"original",
                             std::make_shared<const jit::RawFeatureMap>(task.stateDim())};
   std::vector<FeatureSet> sets{original};
   sets.insert(sets.end(), extraSets.begin(), extraSets.end());
-  sets.push_back(
-      {"discovered", genomeFeatureMap(features.genome, task.stateDim(), config.withOriginal)});
+  const std::size_t firstRun = sets.size();
+
+  struct GpRun {
+    ExperimentConfig config;
+    std::string dir, set;
+    expr::FeaturesFile features;
+  };
+  std::vector<GpRun> gpRuns;
+  std::vector<std::pair<std::string, std::vector<GenerationRecord>>> histories;
+  for (int r = 1; r <= runs; ++r) {
+    GpRun run{config,
+              runs == 1 ? evolveName : evolveName + "/" + runDirName(r, runs),
+              runs == 1 ? "discovered" : runDirName(r, runs),
+              {}};
+    run.config.seed = runSeed(config.seed, r);
+    histories.emplace_back(runs == 1 ? config.name : run.set, e.evolve(run.config, run.dir));
+    run.features = e.discovered(run.dir, task);
+    // A run that kept the original variables returned exactly them: nothing to assess.
+    if (!e.outcome(run.dir).originalWon) {
+      sets.push_back(
+          {run.set, genomeFeatureMap(run.features.genome, task.stateDim(), config.withOriginal)});
+    }
+    gpRuns.push_back(std::move(run));
+  }
   const std::string assessName = "assess-" + config.name;
   e.assess(task, sets, assessName, config.env + " (" + config.name + ")");
   // The Fourier basis against the original variables (same seeds, so the same original runs),
@@ -193,16 +274,48 @@ io::Report benchmark(Experiment& e, const ExperimentConfig& config, const std::s
              config.env + " (" + config.name + "), Fourier basis");
   }
   fitnessPlot(e.dir() + "/fitness-" + config.name,
-              "GP fitness per generation (" + config.name + ")", {{config.name, history}}, true);
+              "GP fitness per generation (" + config.name + ")", histories, runs == 1);
+
+  // Each run's returned features: validated, re-measured on fresh seeds, assessed.
+  const auto finals = readFinals(e.dir() + "/" + assessName);
+  const Summary originalFinal = summarize(finals[0].finals);
+  const Summary originalArea = summarize(finals[0].areas);
+  std::vector<RunAssessment> assessed;
+  std::size_t nextSet = firstRun;
+  for (std::size_t r = 0; r < gpRuns.size(); ++r) {
+    const auto& run = gpRuns[r];
+    const auto& outcome = e.outcome(run.dir);
+    // The original variables' own runs for a run that returned them: a difference of 0.
+    const auto& set = outcome.originalWon ? finals[0] : finals[nextSet++];
+    RunAssessment a;
+    a.run = static_cast<int>(r) + 1;
+    a.seed = run.config.seed;
+    a.returned = !outcome.validated ? "gp-best" : outcome.originalWon ? "original" : "discovered";
+    a.features = outcome.features;
+    a.size = outcome.size;
+    a.gpFitness = outcome.gpBest;
+    a.validated = outcome.winner;
+    a.remeasured = e.remeasure(run.config, run.dir, run.features.genome);
+    a.final = summarize(set.finals);
+    a.area = summarize(set.areas);
+    a.finalVsOriginal = compare(set.finals, finals[0].finals);
+    a.areaVsOriginal = compare(set.areas, finals[0].areas);
+    assessed.push_back(a);
+  }
+  writeFileAtomically(e.dir() + "/method-" + config.name + ".csv",
+                      formatMethodCsv(assessed, originalFinal, originalArea));
+  const auto verdict = methodVerdict(assessed, originalFinal, originalArea);
+  const auto baseline = baselineVerdict(e.options(), figure, config.name);
 
   io::Report r(heading);
   r.heading(heading, 3);
   r.paragraph(description);
-  r.image(fs::path(e.dir()).filename().string() + "/" + assessName + "/curves.png",
+  r.image(figure + "/" + assessName + "/curves.png",
           "(a) performance of the feature sets: mean over " + std::to_string(config.assessRuns) +
               " runs with a 95% confidence band");
-  r.image(fs::path(e.dir()).filename().string() + "/fitness-" + config.name + ".png",
-          "(b) best and mean fitness of the GP population per generation");
+  r.image(figure + "/fitness-" + config.name + ".png",
+          runs == 1 ? "(b) best and mean fitness of the GP population per generation"
+                    : "(b) best fitness of each GP run per generation");
   auto table = readSummaryTable(e.dir() + "/" + assessName);
   const bool haveFourier = fs::exists(e.dir() + "/" + fourierName + "/summary.md");
   if (haveFourier) {
@@ -213,15 +326,37 @@ io::Report benchmark(Experiment& e, const ExperimentConfig& config, const std::s
   }
   r.table(table);
   if (haveFourier) {
-    r.image(fs::path(e.dir()).filename().string() + "/" + fourierName + "/curves.png",
+    r.image(figure + "/" + fourierName + "/curves.png",
             "the Fourier basis (order 3) against the original variables");
   }
-  r.paragraph("Settings (the full resolved config: `" + fs::path(e.dir()).filename().string() +
-              "/" + evolveName + "/config.toml`):");
+  r.paragraph(fmt::format(
+      "Each GP run's returned features (`best.features`): the GP's own fitness of its best set "
+      "(the maximum of noisy estimates, so biased upwards), the validation score that chose the "
+      "set (or kept the original variables), the same trial re-measured on {} fresh seeds, and "
+      "the long assessment against the original variables (final {:.4g} ± {:.2g}); a run that "
+      "returned the original variables is the original variables (no change).",
+      config.validation.seeds, originalFinal.mean, originalFinal.halfWidth));
+  r.table(runTable(assessed, originalFinal));
+  r.paragraph(fmt::format(
+      "Method-level verdict over the {} GP run{}: Wilcoxon's signed-rank test of the runs' mean "
+      "differences from the original variables (two-sided; with fewer than 6 runs it cannot "
+      "reach p < 0.05){}.",
+      runs, runs == 1 ? "" : "s",
+      baseline ? "; the baseline is " + e.options().baselineDir +
+                     " and the last column tests this method's improvements against its own "
+                     "(Mann-Whitney)"
+               : ""));
+  r.table(verdictTable(verdict, baseline ? &*baseline : nullptr));
+  r.paragraph("Settings (the full resolved config: `" + figure + "/" + gpRuns.front().dir +
+              "/config.toml`):");
   r.table(settingsTable(config));
-  r.paragraph("Discovered features (simplified; `" + fs::path(e.dir()).filename().string() + "/" +
-              evolveName + "/best.features`):");
-  r.code(featuresText(features));
+  std::string features;
+  for (const auto& run : gpRuns) {
+    if (runs > 1) features += "# " + run.set + "\n";
+    features += featuresText(run.features);
+  }
+  r.paragraph("Returned features (`" + figure + "/" + evolveName + "/.../best.features`):");
+  r.code(features);
   return r;
 }
 
@@ -262,12 +397,17 @@ io::Report figure6(Experiment& e) {
   // population is the one above.
   const auto swimmer3 = e.config("swimmer3");
   std::vector<std::pair<std::string, std::vector<GenerationRecord>>> runs;
+  const int gpRuns = e.options().gpRuns;
   for (int population : {25, 50, 100}) {
     auto config = e.config("swimmer3", {"gp.population=" + std::to_string(population)});
     const bool same = population == swimmer3.gp.population;
     if (!same) config.name += "-pop" + std::to_string(population);
+    // The config's own population is the benchmark's (first) run above.
+    const std::string dir = same && gpRuns > 1
+                                ? "evolve-" + swimmer3.name + "/" + runDirName(1, gpRuns)
+                                : "evolve-" + config.name;
     runs.emplace_back("population " + std::to_string(population),
-                      e.evolve(same ? swimmer3 : config, "evolve-" + config.name));
+                      e.evolve(same ? swimmer3 : config, dir));
   }
   fitnessPlot(e.dir() + "/population-sizes", "3-segment swimmer: best fitness per generation", runs,
               false);
@@ -291,6 +431,61 @@ io::Report runFigure(const std::string& figure, Experiment& e, const ReproduceOp
                    "Approximate lambda-policy iteration on Tetris (12 rows, 8 columns).", false);
 }
 
+// One row per benchmark with method-level results in the output directory (and the baseline's).
+std::vector<std::vector<std::string>> methodSummaryTable(const ReproduceOptions& o) {
+  std::vector<std::string> header{
+      "benchmark",      "runs",       "original (final)",    "median change",
+      "better / worse", "Wilcoxon p", "area: median change", "area: Wilcoxon p"};
+  if (!o.baselineDir.empty()) {
+    header.insert(header.end(), {"baseline: median change", "baseline: better / worse",
+                                 "baseline: Wilcoxon p", "vs baseline: Mann-Whitney p"});
+  }
+  std::vector<std::vector<std::string>> rows{header};
+  for (const auto& figure : kFigures) {
+    const std::string dir = o.outDir + "/" + figure;
+    if (!fs::is_directory(dir)) continue;
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::directory_iterator(dir)) {
+      const auto name = entry.path().filename().string();
+      if (name.starts_with("method-") && name.ends_with(".csv")) files.push_back(entry.path());
+    }
+    std::sort(files.begin(), files.end());
+    for (const auto& file : files) {
+      Summary originalFinal, originalArea;
+      const auto runs =
+          parseMethodCsv(readFile(file.string()), file.string(), originalFinal, originalArea);
+      const auto v = methodVerdict(runs, originalFinal, originalArea);
+      const std::string name = file.stem().string().substr(7);
+      std::vector<std::string> row{
+          name,
+          std::to_string(v.runs),
+          fmt::format("{:.4g}", originalFinal.mean),
+          fmt::format("{:+.4g} ({:+.1f}%)", v.final.median,
+                      100.0 * v.final.median / std::fabs(originalFinal.mean)),
+          fmt::format("{} / {}", v.betterFinal, v.worseFinal),
+          fmt::format("{:.3g}", v.final.p),
+          fmt::format("{:+.4g}", v.area.median),
+          fmt::format("{:.3g}", v.area.p)};
+      if (!o.baselineDir.empty()) {
+        const auto base = baselineVerdict(o, figure, name);
+        if (base) {
+          row.insert(
+              row.end(),
+              {fmt::format("{:+.4g}", base->final.median),
+               fmt::format("{} / {}", base->betterFinal, base->worseFinal),
+               fmt::format("{:.3g}", base->final.p),
+               fmt::format("{:.3g}",
+                           compare(v.finalDifferences, base->finalDifferences).mannWhitneyP)});
+        } else {
+          row.insert(row.end(), {"-", "-", "-", "-"});
+        }
+      }
+      rows.push_back(row);
+    }
+  }
+  return rows;
+}
+
 }  // namespace
 
 void reproduce(const std::vector<std::string>& figures, const ReproduceOptions& o) {
@@ -307,11 +502,12 @@ void reproduce(const std::vector<std::string>& figures, const ReproduceOptions& 
     }
     Experiment e(o, figure);
     io::Report part = runFigure(figure, e, o);
-    part.paragraph(fmt::format(
-        "Compute time of this experiment: GP runs {:.0f} s, assessments {:.0f} s ({} scale, seed "
-        "{}, gpfd {} {}, {} threads).",
-        e.evolveSeconds(), e.assessSeconds(), o.paperScale ? "paper" : "quick", o.seed, o.version,
-        o.revision, o.threads > 0 ? std::to_string(o.threads) : "all"));
+    part.paragraph(
+        fmt::format("Compute time of this experiment: GP runs {:.0f} s, their validation {:.0f} s, "
+                    "assessments {:.0f} s ({} scale, seed {}, gpfd {} {}, {} threads).",
+                    e.evolveSeconds(), e.validationSeconds(), e.assessSeconds(),
+                    o.paperScale ? "paper" : "quick", o.seed, o.version, o.revision,
+                    o.threads > 0 ? std::to_string(o.threads) : "all"));
     writeFileAtomically(e.dir() + "/section.json", part.json());
     e.checkStop(e.dir());
   }
@@ -323,6 +519,20 @@ void reproduce(const std::vector<std::string>& figures, const ReproduceOptions& 
       "SVG) and GP runs are in its directory; `config.toml` in each GP run is the fully resolved "
       "config.",
       o.version, o.revision));
+  const auto summary = methodSummaryTable(o);
+  if (summary.size() > 1) {
+    report.heading("Method-level summary", 2);
+    report.paragraph(fmt::format(
+        "Per benchmark, over its GP runs ({} per benchmark in this reproduction): the median "
+        "change of the returned features' final performance against the original variables (long "
+        "assessment), how many runs are significantly better or worse (Welch p < 0.05), and "
+        "Wilcoxon's signed-rank test over the runs' mean differences{}.",
+        o.gpRuns,
+        o.baselineDir.empty() ? ""
+                              : "; then the same for the baseline " + o.baselineDir +
+                                    " and a Mann-Whitney test of the two sets of changes"));
+    report.table(summary);
+  }
   for (const auto& figure : kFigures) {
     const std::string path = o.outDir + "/" + figure + "/section.json";
     if (fs::exists(path)) report.append(io::Report::fromJson(readFile(path)));

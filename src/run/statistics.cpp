@@ -73,4 +73,77 @@ Comparison compare(const std::vector<double>& a, const std::vector<double>& b) {
   return c;
 }
 
+PairedComparison comparePaired(const std::vector<double>& a, const std::vector<double>& b) {
+  PairedComparison c;
+  std::vector<double> d;
+  for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) d.push_back(a[i] - b[i]);
+  const Summary s = summarize(d);
+  c.n = s.n;
+  c.meanDifference = s.mean;
+  if (s.n < 2) return c;
+  c.standardError = s.stddev / std::sqrt(static_cast<double>(s.n));
+  if (c.standardError > 0) {
+    const boost::math::students_t t(s.n - 1);
+    c.p = 2 * boost::math::cdf(boost::math::complement(t, std::fabs(s.mean / c.standardError)));
+  } else {
+    c.p = s.mean == 0 ? 1.0 : 0.0;
+  }
+  return c;
+}
+
+SignedRankTest wilcoxonSignedRank(const std::vector<double>& values) {
+  SignedRankTest test;
+  if (!values.empty()) {
+    std::vector<double> sorted = values;
+    std::sort(sorted.begin(), sorted.end());
+    const std::size_t m = sorted.size() / 2;
+    test.median = sorted.size() % 2 ? sorted[m] : 0.5 * (sorted[m - 1] + sorted[m]);
+  }
+  std::vector<double> nonZero;
+  for (const double v : values) {
+    if (v != 0) nonZero.push_back(v);
+  }
+  test.n = static_cast<int>(nonZero.size());
+  if (test.n == 0) return test;
+  std::sort(nonZero.begin(), nonZero.end(),
+            [](double x, double y) { return std::fabs(x) < std::fabs(y); });
+  // Doubled mid-ranks are integers, which the exact distribution below counts over.
+  std::vector<int> doubledRanks(nonZero.size());
+  double tieTerm = 0.0;
+  for (std::size_t i = 0; i < nonZero.size();) {
+    std::size_t j = i;
+    while (j < nonZero.size() && std::fabs(nonZero[j]) == std::fabs(nonZero[i])) ++j;
+    const double ties = static_cast<double>(j - i);
+    tieTerm += ties * ties * ties - ties;
+    for (std::size_t k = i; k < j; ++k) doubledRanks[k] = static_cast<int>(i + 1 + j);
+    i = j;
+  }
+  int doubledPlus = 0, doubledTotal = 0;
+  for (std::size_t i = 0; i < nonZero.size(); ++i) {
+    doubledTotal += doubledRanks[i];
+    if (nonZero[i] > 0) doubledPlus += doubledRanks[i];
+  }
+  test.wPlus = doubledPlus / 2.0;
+  const int extreme = std::min(doubledPlus, doubledTotal - doubledPlus);
+  if (test.n <= 30) {
+    // Under the null each rank is positive with probability 1/2: count the sign patterns whose
+    // doubled positive rank sum is at most `extreme` (the distribution is symmetric).
+    std::vector<double> ways(static_cast<std::size_t>(doubledTotal) + 1, 0.0);
+    ways[0] = 1.0;
+    for (const int r : doubledRanks) {
+      for (int s = doubledTotal; s >= r; --s) ways[s] += ways[s - r];
+    }
+    double tail = 0.0;
+    for (int s = 0; s <= extreme; ++s) tail += ways[s];
+    test.p = std::min(1.0, 2.0 * tail / std::ldexp(1.0, test.n));
+    return test;
+  }
+  const double n = test.n;
+  const double mean = n * (n + 1) / 4;
+  const double variance = n * (n + 1) * (2 * n + 1) / 24 - tieTerm / 48;
+  const double z = std::max(0.0, std::fabs(test.wPlus - mean) - 0.5) / std::sqrt(variance);
+  test.p = 2 * boost::math::cdf(boost::math::complement(boost::math::normal(), z));
+  return test;
+}
+
 }  // namespace gpfd::run

@@ -14,8 +14,8 @@ using gpfd::testing::runGpfd;
 using gpfd::testing::writeText;
 
 const std::vector<std::string> kCommands{
-    "evolve",   "evolve-toy",    "assess",          "reproduce",     "train",    "envs",
-    "simulate", "features show", "features export", "features eval", "bench jit"};
+    "evolve",   "evolve-toy",    "assess",          "reproduce",     "train",     "envs",
+    "simulate", "features show", "features export", "features eval", "bench jit", "fitness-noise"};
 
 TEST(CliTable, EveryCommandHasHelp) {
   for (const auto& command : kCommands) {
@@ -37,7 +37,8 @@ TEST(CliTable, HelpShowsTheBounds) {
       {"evolve-toy", "in [2, 1000000]"},   {"evolve-toy", "in [10, 1000000]"},
       {"assess", "in [1, 100000]"},        {"assess", "in [1, 1000000]"},
       {"simulate", "in [0, 10000000]"},    {"train", "in [0, 100000]"},
-      {"bench jit", "in [1, 1000000000]"}, {"reproduce", "in [0, 4096]"}};
+      {"bench jit", "in [1, 1000000000]"}, {"fitness-noise", "in [2, 10000]"},
+      {"reproduce", "in [1, 100]"},        {"reproduce", "in [0, 4096]"}};
   for (const auto& [command, bound] : bounds) {
     EXPECT_NE(runGpfd(command + " --help").output.find(bound), std::string::npos)
         << command << ": " << bound;
@@ -90,13 +91,22 @@ TEST(CliTable, BadInputIsOneErrorLineWithExitTwo) {
       {"reproduce --scale papr", "(did you mean 'paper'?) (gpfd reproduce --scale)"},
       {"reproduce --threads -1", "-1 is outside [0, 4096] (gpfd reproduce --threads)"},
       {"reproduce fig9 --out " + dir + "/fig9", "unknown figure 'fig9'"},
+      {"reproduce --gp-runs 0", "0 is outside [1, 100] (gpfd reproduce --gp-runs)"},
+      {"evolve --runs 1001", "1001 is outside [1, 1000] (gpfd evolve --runs)"},
+      {"fitness-noise", "missing RUN (gpfd fitness-noise)"},
+      {"fitness-noise " + dir + " --pairs 0",
+       "0 is outside [1, 1000] (gpfd fitness-noise --pairs)"},
       {"train cartpole --learner xx", "'xx' is not one of pg, lpi (gpfd train --learner)"},
       {"train cartpole --eval -1", "-1 is outside [0, 100000] (gpfd train --eval)"},
       {"simulate cartpole --steps -3", "-3 is outside [0, 10000000] (gpfd simulate --steps)"},
       {"simulate cartpole --policy greedy --steps 3", "'greedy' is not one of random"},
       {"simulate cartpole --steps 3", "without a policy or --actions only the initial state"},
       {"features show --format xml " + features, "'xml' is not one of infix, sexpr"},
-      {"features show " + dir, "a directory, not a file (" + dir + ")"},
+      {"features show " + dir,
+       "a directory without best.features: give a features file or a "
+       "run's results directory (" +
+           dir + ")"},
+      {"assess cartpole --features " + dir, "a directory, not a file (" + dir + ")"},
       {"features eval " + features, "give either --state v1,v2,... or --states FILE"},
       {"features eval " + features + " --state 1,2", "2 values for the 4 variables"},
       {"bench jit --calls 0", "0 is outside [1, 1000000000] (gpfd bench jit --calls)"},

@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <boost/math/distributions/chi_squared.hpp>
+#include <set>
 
 #include "gpfd/expr/eval.hpp"
+#include "gpfd/gp/fitness_cache.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::gp {
@@ -31,14 +33,18 @@ double noisyFitness(const expr::Genome& g, Rng& rng) {
   return -error;
 }
 
-std::vector<GenerationStats> runOnce(std::uint64_t seed) {
+// A run on noisyFitness behind a cache; maxTrials 0: a genome keeps its first fitness.
+std::vector<GenerationStats> runOnce(std::uint64_t seed, int maxTrials = 0,
+                                     bool commonRandomNumbers = false) {
   GpConfig config;
   config.population = 40;
   config.generations = 8;
   config.sizePenalty = 1e-3;
   config.seed = seed;
+  config.commonRandomNumbers = commonRandomNumbers;
   SerialEvaluator evaluator(noisyFitness);
-  Evolution evolution(config, smallSpace(), evaluator);
+  CachingEvaluator cache(evaluator, 1, maxTrials);
+  Evolution evolution(config, smallSpace(), cache);
   std::vector<GenerationStats> all;
   evolution.run([&](const GenerationStats& s) {
     all.push_back(s);
@@ -65,14 +71,71 @@ TEST(Evolution, SameSeedSameStatistics) {
   EXPECT_NE(a.back().mean, c.back().mean);
 }
 
-TEST(Evolution, ElitesKeepTheirFitnessAndBestNeverDrops) {
+TEST(Evolution, WithoutReevaluationElitesKeepTheirFitnessAndBestNeverDrops) {
   const auto stats = runOnce(3);
   ASSERT_EQ(stats.size(), 8u);
   for (std::size_t i = 1; i < stats.size(); ++i) {
     EXPECT_GE(stats[i].best, stats[i - 1].best);
-    EXPECT_EQ(stats[i].evaluations, 36);  // 40 minus 4 elites.
+    EXPECT_EQ(stats[i].evaluations, 40);  // Elites too go to the evaluator (the cache).
   }
-  EXPECT_EQ(stats[0].evaluations, 40);
+}
+
+TEST(Evolution, ReevaluationLetsALuckyBestFall) {
+  // With re-evaluation an elite's fitness becomes the mean of more draws, so the best of a noisy
+  // problem may fall; without it, it never does (above).
+  const auto stats = runOnce(3, 4);
+  bool fell = false;
+  for (std::size_t i = 1; i < stats.size(); ++i) fell = fell || stats[i].best < stats[i - 1].best;
+  EXPECT_TRUE(fell);
+  expectSameStats(stats, runOnce(3, 4));
+}
+
+// Records the seed each genome was evaluated with.
+class SeedRecorder final : public Evaluator {
+ public:
+  std::vector<double> evaluate(const std::vector<const expr::Genome*>& genomes,
+                               const std::vector<std::uint64_t>& seeds) override {
+    batches.push_back(seeds);
+    return std::vector<double>(genomes.size(), 1.0);
+  }
+  std::vector<std::vector<std::uint64_t>> batches;
+};
+
+TEST(Evolution, CommonRandomNumbersGiveAGenerationOneSeed) {
+  for (const bool common : {false, true}) {
+    GpConfig config;
+    config.population = 10;
+    config.generations = 3;
+    config.commonRandomNumbers = common;
+    SeedRecorder recorder;
+    Evolution evolution(config, smallSpace(), recorder);
+    evolution.run([](const GenerationStats&) { return true; });
+    ASSERT_EQ(recorder.batches.size(), 3u);
+    for (const auto& seeds : recorder.batches) {
+      ASSERT_EQ(seeds.size(), 10u);
+      const auto distinct = std::set<std::uint64_t>(seeds.begin(), seeds.end()).size();
+      EXPECT_EQ(distinct, common ? 1u : 10u);
+    }
+    EXPECT_NE(recorder.batches[0], recorder.batches[1]);
+  }
+}
+
+TEST(Evolution, TheReducerRewritesEveryNewGenome) {
+  GpConfig config;
+  config.population = 20;
+  config.generations = 4;
+  SerialEvaluator evaluator(noisyFitness);
+  // Keeps only the first feature of every genome.
+  const GenomeReducer firstOnly = [](const expr::Genome& g) {
+    expr::Genome out;
+    out.addFeature(g.feature(0));
+    return out;
+  };
+  Evolution evolution(config, smallSpace(), evaluator, firstOnly);
+  evolution.run([&](const GenerationStats&) {
+    for (const auto& ind : evolution.population()) EXPECT_EQ(ind.genome.featureCount(), 1u);
+    return true;
+  });
 }
 
 TEST(Evolution, NonFiniteFitnessScoresWorst) {

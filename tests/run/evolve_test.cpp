@@ -4,10 +4,16 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <thread>
 
 #include "cli_helpers.hpp"
+#include "gpfd/expr/features_file.hpp"
+#include "gpfd/run/experiment_config.hpp"
+#include "gpfd/run/statistics.hpp"
+#include "gpfd/run/validation.hpp"
 
 namespace gpfd::testing {
 namespace {
@@ -22,15 +28,33 @@ TEST(Evolve, WritesTheResultsDirectory) {
   const auto dir = freshDir("evolve-files");
   const auto r = runGpfd("evolve " + tinyConfig() + " --quiet --out " + dir);
   ASSERT_EQ(r.status, 0) << r.output;
-  for (const char* file :
-       {"config.toml", "run.json", "generations.csv", "best.features", "checkpoint.json",
-        "best/generation-0000.features", "best/generation-0005.features"}) {
+  for (const char* file : {"config.toml", "run.json", "generations.csv", "best.features",
+                           "checkpoint.json", "validation.csv", "front.csv",
+                           "best/generation-0000.features", "best/generation-0005.features"}) {
     EXPECT_TRUE(std::filesystem::exists(dir + "/" + file)) << file;
   }
   const auto csv = readText(dir + "/generations.csv");
   EXPECT_EQ(csv.substr(0, csv.find('\n')),
-            "generation,best,mean,median,mean_size,mean_features,evaluations,cache_hits,seconds");
-  EXPECT_NE(readText(dir + "/best.features").find("# env: cartpole"), std::string::npos);
+            "generation,best,mean,median,mean_size,mean_features,evaluations,reevaluations,"
+            "cache_hits,seconds");
+  const auto best = readText(dir + "/best.features");
+  EXPECT_NE(best.find("# env: cartpole"), std::string::npos);
+  EXPECT_NE(best.find("# validated: "), std::string::npos);
+  EXPECT_NE(best.find("(30 trials)"), std::string::npos);
+  EXPECT_NE(best.find("# verdict: "), std::string::npos);
+  // Hall of fame (10) and the original variables, each on its own line.
+  const auto validation = readText(dir + "/validation.csv");
+  EXPECT_EQ(std::count(validation.begin(), validation.end(), '\n'), 12);
+  EXPECT_NE(validation.find(",original,"), std::string::npos);
+  // The complexity front, and the run directory as a stand-in for its best.features.
+  const auto front = runGpfd("features show " + dir + " --front");
+  EXPECT_EQ(front.status, 0) << front.output;
+  EXPECT_NE(front.output.find("validated (mean +- SE)"), std::string::npos);
+  const auto frontCsv = readText(dir + "/front.csv");
+  EXPECT_EQ(std::count(front.output.begin(), front.output.end(), '\n'),
+            std::count(frontCsv.begin(), frontCsv.end(), '\n'));
+  EXPECT_EQ(runGpfd("features show " + dir).status, 0);
+  EXPECT_EQ(runGpfd("features show " + dir + "/best.features --front").status, 2);
   // The resolved config reads back as a config.
   const auto againDir = freshDir("evolve-files-again");
   const auto again = runGpfd("evolve " + dir + "/config.toml --quiet --out " + againDir);
@@ -117,6 +141,67 @@ TEST(Evolve, ExtendingAResumedRunMatchesALongerRun) {
   ASSERT_EQ(runGpfd("evolve --quiet --resume " + dir + " --generations 8").status, 0);
   EXPECT_EQ(withoutSeconds(readText(dir + "/generations.csv")),
             withoutSeconds(readText(longer + "/generations.csv")));
+}
+
+TEST(Evolve, RunsMakeASetThatResumes) {
+  const auto dir = freshDir("evolve-runs");
+  const auto r =
+      runGpfd("evolve " + tinyConfig() + " --generations 3 --runs 3 --quiet --out " + dir);
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto runs = readText(dir + "/runs.csv");
+  EXPECT_EQ(std::count(runs.begin(), runs.end(), '\n'), 4);
+  // Run 1 is the single run with the set's seed.
+  const auto single = freshDir("evolve-runs-single");
+  ASSERT_EQ(runGpfd("evolve " + tinyConfig() + " --generations 3 --quiet --out " + single).status,
+            0);
+  EXPECT_EQ(fingerprint(dir + "/run-01"), fingerprint(single));
+  EXPECT_NE(fingerprint(dir + "/run-02"), fingerprint(dir + "/run-01"));
+  // A run lost (as if killed before it started) is redone exactly on resume.
+  const auto second = fingerprint(dir + "/run-02");
+  std::filesystem::remove_all(dir + "/run-02");
+  const auto resumed = runGpfd("evolve --resume " + dir + " --quiet");
+  ASSERT_EQ(resumed.status, 0) << resumed.output;
+  EXPECT_EQ(fingerprint(dir + "/run-02"), second);
+  EXPECT_EQ(readText(dir + "/runs.csv"), runs);
+  // A set is not started twice in one directory, and --runs does not go with --resume.
+  EXPECT_EQ(runGpfd("evolve " + tinyConfig() + " --runs 2 --quiet --out " + dir).status, 2);
+  EXPECT_EQ(runGpfd("evolve --resume " + dir + " --runs 2").status, 2);
+}
+
+TEST(Evolve, BadDiscoveryKeysNameTheKey) {
+  for (const auto& [set, key] : std::vector<std::pair<std::string, std::string>>{
+           {"fitness.max_trials=1", "fitness.max_trials"},
+           {"fitness.max_trials=-3", "fitness.max_trials"},
+           {"validation.seeds=0", "validation.seeds"},
+           {"validation.candidates=-1", "validation.candidates"},
+           {"validation.every=-2", "validation.every"},
+           {"fitness.state_sample=0", "fitness.state_sample"},
+           {"validation.params.updatez=3", "updatez"}}) {
+    const auto r = runGpfd("evolve " + tinyConfig() + " --quiet --out " + freshDir("bad-key") +
+                           " --set " + set);
+    EXPECT_EQ(r.status, 2) << set << ": " << r.output;
+    EXPECT_NE(r.output.find(key), std::string::npos) << set << ": " << r.output;
+  }
+}
+
+// The winner's curse is gone: the validated score that best.features carries agrees with the
+// same trial re-measured on fresh seeds, within 2 standard errors of their difference.
+TEST(Evolve, TheValidatedScoreHoldsOnFreshSeeds) {
+  const auto dir = freshDir("evolve-honest");
+  ASSERT_EQ(runGpfd("evolve " + tinyConfig() + " --quiet --out " + dir).status, 0);
+  const auto config = run::loadExperimentConfig(dir + "/config.toml");
+  const auto file = expr::readFeaturesFile(dir + "/best.features");
+  const auto validated = file.meta.at("validated");  // "MEAN +- SE (M trials)"
+  const double mean = std::stod(validated);
+  const double se = std::stod(validated.substr(validated.find("+-") + 2));
+  const run::Validator remeasure(config, 2, run::Validator::kRemeasureStream);
+  const auto scores = remeasure.score(std::vector<std::shared_ptr<const jit::FeatureMap>>{
+      run::genomeFeatureMap(file.genome, 4, config.withOriginal)})[0];
+  const auto fresh = run::summarize(scores);
+  const double freshSe = fresh.stddev / std::sqrt(static_cast<double>(fresh.n));
+  EXPECT_EQ(fresh.n, 30);
+  EXPECT_LE(std::fabs(mean - fresh.mean), 2 * std::hypot(se, freshSe))
+      << "validated " << validated << ", re-measured " << fresh.mean << " +- " << freshSe;
 }
 
 }  // namespace

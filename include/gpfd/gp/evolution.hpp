@@ -25,6 +25,10 @@ struct GpConfig {
   double elitism = 0.1;  // Fraction of the population copied unchanged (rounded).
   int tournamentSize = 3;
   double sizePenalty = 0.0;  // Subtracted per node from the raw fitness.
+  // Common random numbers: every individual of a generation is evaluated with the same seed,
+  // deriveSeed(seed, kEvaluationStream, generation), so that fitness differences within a
+  // generation are paired. Otherwise each individual has its own seed.
+  bool commonRandomNumbers = false;
   std::uint64_t seed = 1;
 };
 
@@ -57,7 +61,7 @@ struct GenerationStats {
   double median = 0.0;
   double meanSize = 0.0;      // Nodes per individual.
   double meanFeatures = 0.0;  // Features per individual.
-  int evaluations = 0;        // Genomes sent to the evaluator this generation.
+  int evaluations = 0;        // Genomes sent to the evaluator this generation (elites included).
   int invalid = 0;            // Individuals with a non-finite fitness.
   double seconds = 0.0;       // Wall time of the generation.
   Individual bestIndividual;
@@ -71,14 +75,21 @@ struct EvolutionState {
   std::vector<long> operatorCounts;
 };
 
-// Contract: the run is a pure function of (config, space, fitness); evaluation seeds are
-// deriveSeed(config.seed, kEvaluationStream, generation, index).
+// Rewrites a new genome before it is evaluated (e.g. drops redundant features); must be a pure
+// function of the genome and keep it within the search space's limits.
+using GenomeReducer = std::function<expr::Genome(const expr::Genome&)>;
+
+// Contract: the run is a pure function of (config, space, fitness, reducer); evaluation seeds are
+// deriveSeed(config.seed, kEvaluationStream, generation, index), or deriveSeed(config.seed,
+// kEvaluationStream, generation) for every index with common random numbers. Every individual,
+// elites included, is passed to the evaluator each generation, so that an evaluator that
+// re-evaluates (CachingEvaluator) can refine the fitness of the survivors.
 class Evolution {
  public:
   static constexpr std::uint64_t kVariationStream = 0;
   static constexpr std::uint64_t kEvaluationStream = 1;
 
-  Evolution(GpConfig config, SearchSpace space, Evaluator& evaluator);
+  Evolution(GpConfig config, SearchSpace space, Evaluator& evaluator, GenomeReducer reduce = {});
 
   // Creates and evaluates generation 0.
   GenerationStats initialize();
@@ -103,12 +114,14 @@ class Evolution {
  private:
   const Individual& tournament();
   std::vector<expr::Genome> breed(std::size_t count);
-  // Evaluates population_[from, end) and computes the statistics.
-  GenerationStats evaluateFrom(std::size_t from, double startSeconds);
+  // Evaluates the whole population and computes the statistics.
+  GenerationStats evaluate(double startSeconds);
+  expr::Genome reduced(expr::Genome genome) const;
 
   GpConfig config_;
   SearchSpace space_;
   Evaluator& evaluator_;
+  GenomeReducer reduce_;
   Rng rng_;
   int generation_ = -1;
   std::vector<Individual> population_;

@@ -59,6 +59,14 @@ void writeAssessment(const std::string& dir, const AssessmentResult& result,
                      const std::vector<SetSummary>& summary, const std::string& title,
                      const std::string& xlabel);
 
+// DIR/finals.csv (written by writeAssessment) read back: per set, in file order, its runs' final
+// performances and areas.
+struct SetFinals {
+  std::string name;
+  std::vector<double> finals, areas;
+};
+std::vector<SetFinals> readFinals(const std::string& dir);
+
 // The statistics table of DIR/summary.md (written by writeAssessment): the header row, then one
 // row per feature set, each a list of cells as formatted there.
 std::vector<std::vector<std::string>> readSummaryTable(const std::string& dir);

@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "gpfd/gp/evolution.hpp"
+#include "gpfd/gp/fitness_cache.hpp"
+#include "gpfd/run/validation.hpp"
 
 namespace gpfd::run {
 
@@ -18,18 +20,27 @@ struct GenerationRecord {
   double median = 0.0;
   double meanSize = 0.0;
   double meanFeatures = 0.0;
-  int evaluations = 0;  // Genomes actually evaluated (cache hits excluded).
+  int evaluations = 0;    // Genomes actually evaluated (cache hits excluded).
+  int reevaluations = 0;  // Of those, genomes met before that got fresh trials.
   int cacheHits = 0;
   double seconds = 0.0;
   expr::Genome bestGenome;
+};
+
+// The validation stage's results so far.
+struct ValidationState {
+  std::vector<ValidatedSet> sets;  // Every set validated, the original variables included.
+  int finalGeneration = -1;        // The last generation after which the winner was chosen.
+  double seconds = 0.0;            // Wall time spent validating.
 };
 
 struct Checkpoint {
   std::string version;  // gpfd's version; a checkpoint of another version is refused.
   std::string config;   // The resolved config (TOML text) the run was started with.
   gp::EvolutionState state;
-  std::map<std::string, double> cache;  // The fitness cache (canonical key -> fitness).
+  std::map<std::string, gp::FitnessRecord> cache;  // The fitness cache.
   std::vector<GenerationRecord> history;
+  ValidationState validation;
 };
 
 std::string formatCheckpoint(const Checkpoint& checkpoint);
@@ -37,7 +48,7 @@ std::string formatCheckpoint(const Checkpoint& checkpoint);
 Checkpoint parseCheckpoint(const std::string& text, const std::string& source);
 
 // generations.csv:
-// generation,best,mean,median,mean_size,mean_features,evaluations,cache_hits,seconds
+// generation,best,mean,median,mean_size,mean_features,evaluations,reevaluations,cache_hits,seconds
 std::string formatGenerationsCsv(const std::vector<GenerationRecord>& history);
 
 }  // namespace gpfd::run

@@ -6,7 +6,9 @@
 //   run.json                 seed, version, threads (and MPI processes, when above 1)
 //   generations.csv          one row per generation
 //   best/generation-NNNN.features   the best genome of each generation
-//   best.features            the best features so far (the final ones at the end)
+//   best.features            the GP's best features so far; at the end the validation winner
+//   validation.csv           the validated sets (hall of fame and original variables)
+//   front.csv                the best validated set at each size
 //   checkpoint.json          everything needed to continue exactly
 // Every file is written atomically; a generation's files are written before its checkpoint.
 #pragma once
@@ -57,13 +59,17 @@ class Discovery {
   ~Discovery();
 
   // Runs generations until the configured number exist or `stop` becomes true (checked after
-  // each generation, once its checkpoint is written). `onGeneration` sees every new record.
+  // each generation, once its checkpoint is written), then the final validation (unless
+  // stopped). `onGeneration` sees every new record.
   void run(const std::function<void(const GenerationRecord&)>& onGeneration,
            const std::atomic<bool>& stop);
 
   const ExperimentConfig& config() const;
+  std::size_t stateDim() const;
   const std::vector<GenerationRecord>& history() const;
+  // Every generation done and, when validating, the winner chosen.
   bool finished() const;
+  const ValidationState& validation() const;
   // Evaluations completed in the current generation (for progress displays; any thread).
   long progress() const;
   int populationSize() const;

@@ -31,20 +31,43 @@ struct ExperimentConfig {
   std::map<std::string, std::string> learnerParams;
 
   int trials = 5;  // K short learning trials per fitness evaluation (the paper: 4-10).
+  // Cap on the trials a genome accumulates: one met again gets K fresh trials until it has this
+  // many, its fitness the mean over all of them. 0: no re-evaluation (the first K decide).
+  int maxTrials = 0;
+  // At most this share of the population is re-evaluated per generation, best fitness first.
+  double reevaluationShare = 0.1;
   TrialMeasure measure = TrialMeasure::Mean;
   double lastFraction = 0.25;
   bool withOriginal = false;  // The learner sees discovered + original variables.
+  // Each feature scaled to zero mean and unit standard deviation on sampled states, as part of
+  // the feature (so best.features carries the scaling).
+  bool normalise = false;
+  // Visited states sampled (random actions) for redundancy and normalisation.
+  int stateSample = 512;
 
   std::string primitives = "control";
   std::vector<double> constants{1.0, 2.0};
   bool ephemeral = true;
   expr::GenomeLimits limits;
+  // Features linearly dependent on the earlier ones, the bias (and the original variables with
+  // withOriginal) on sampled states are dropped from every new genome before it is evaluated.
+  bool dropRedundant = true;
   int initMinDepth = 2;
   int initMaxDepth = 4;
   int initMaxFeatures = 4;
   int mutationDepth = 3;
 
   gp::GpConfig gp;  // gp.seed is ignored: `seed` above is the run's seed.
+
+  // The validation stage that picks what a run returns: the best distinct genomes (a hall of
+  // fame of `candidates`) and the original variables are each scored on the same `seeds` fresh
+  // trials, with the learner settings of the short trial overridden by `params`.
+  struct Validation {
+    int candidates = 10;  // 0: no validation; the GP's best is returned.
+    int seeds = 30;
+    int every = 0;  // Also validate the hall of fame every this many generations; 0: at the end.
+    std::map<std::string, std::string> params;
+  } validation;
 
   int assessRuns = 20;  // Independent long trainings per feature set in `gpfd assess`.
   // The long budget: learner settings that override learnerParams for assessment.

@@ -11,20 +11,30 @@
 #include "gpfd/jit/feature_map.hpp"
 #include "gpfd/rl/learning_curve.hpp"
 #include "gpfd/run/experiment_config.hpp"
+#include "gpfd/run/state_sample.hpp"
 #include "gpfd/util/rng.hpp"
 
 namespace gpfd::run {
 
 class LearningTask {
  public:
-  // `budget` selects the learner settings: the short trials of GP fitness, or the long training
-  // of assessment (learner.params overridden by assess.params).
-  enum class Budget { Trial, Assessment };
+  // `budget` selects the learner settings: the short trials of GP fitness, the validation trials
+  // (learner.params overridden by validation.params), or the long training of assessment
+  // (learner.params overridden by assess.params).
+  enum class Budget { Trial, Validation, Assessment };
   LearningTask(const ExperimentConfig& config, Budget budget);
 
   const ExperimentConfig& config() const { return config_; }
   const std::vector<std::string>& stateNames() const { return stateNames_; }
   std::size_t stateDim() const { return stateNames_.size(); }
+
+  // States visited under random actions (config.stateSample of them, seeded from the run's
+  // seed), the same on every process that builds the task from the same config.
+  const std::shared_ptr<const FeatureSample>& stateSample() const { return sample_; }
+  // The features a learner sees for a genome in GP and validation: the genome, normalised when
+  // config.normalise, followed by the original variables when config.withOriginal.
+  expr::Genome prepared(const expr::Genome& genome) const;
+  std::shared_ptr<const jit::FeatureMap> featureMap(const expr::Genome& genome) const;
 
   // One learning run on a fresh environment, seeing states through `map` (inputDim() ==
   // stateDim()). Thread-safe: shares nothing between calls.
@@ -36,15 +46,18 @@ class LearningTask {
   ExperimentConfig config_;
   std::map<std::string, std::string> learnerParams_;
   std::vector<std::string> stateNames_;
+  std::shared_ptr<const FeatureSample> sample_;
 };
 
 // The features a learner sees for a genome: its compiled features, followed by the original
-// state variables when `withOriginal`.
+// state variables when `withOriginal` (only once when the genome is the variables themselves,
+// as a run's best.features is when no discovered set beat them).
 std::shared_ptr<const jit::FeatureMap> genomeFeatureMap(const expr::Genome& genome,
                                                         std::size_t stateDim, bool withOriginal);
 
-// The fitness of GP: the mean score of config.trials short trials, trial t seeded from
-// deriveSeed(rng(), t). Any non-finite or diverged trial makes the fitness -inf (worst).
+// The fitness of GP: the mean score of config.trials short trials of task.featureMap(genome),
+// trial t seeded from deriveSeed(rng(), t). Any non-finite or diverged trial makes the fitness
+// -inf (worst).
 double trialFitness(const LearningTask& task, const expr::Genome& genome, Rng& rng);
 
 }  // namespace gpfd::run

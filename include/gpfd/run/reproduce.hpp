@@ -5,6 +5,8 @@
 //   fig6  3- and 5-segment swimmer: as fig5 with the population's mean fitness; for 3 segments
 //         the best-fitness curves with populations 25, 50 and 100
 //   fig7  Tetris 12x8 with lambda-policy iteration: as fig6
+// With several GP runs per benchmark (gpRuns), each run's returned features are assessed and the
+// report gives the method-level verdict (method_verdict.hpp), written to OUT/<fig>/method-NAME.csv.
 // Each experiment keeps its runs in OUT/<fig>/...; a rerun resumes unfinished GP runs and reuses
 // finished steps, so a long paper-scale reproduction can be interrupted and continued.
 #pragma once
@@ -30,6 +32,14 @@ struct ReproduceOptions {
   // paper's budget a basis that does not learn plays every episode to the step limit, which can
   // cost more than the rest of the experiment. A later run without the flag adds them.
   bool skipFourier = false;
+  // Independent GP runs per benchmark (run r with seed runSeed(seed, r)); each run's features
+  // are assessed against the original variables and the report gives the method-level verdict.
+  int gpRuns = 1;
+  // key=value overrides applied to every benchmark's config (e.g. to switch a behaviour off).
+  std::vector<std::string> overrides;
+  // An earlier reproduction (e.g. of the old behaviour) whose method-level results each
+  // benchmark is compared with; empty: none.
+  std::string baselineDir;
   const std::atomic<bool>* stop = nullptr;  // Set (e.g. by SIGINT) to stop after a checkpoint.
   // Loads a shipped config by name (configs/NAME.toml) with key=value overrides.
   std::function<ExperimentConfig(const std::string& name,

@@ -26,4 +26,26 @@ struct Comparison {
 // Compares sample a against sample b (each of size >= 2).
 Comparison compare(const std::vector<double>& a, const std::vector<double>& b);
 
+// Paired comparison of a[i] with b[i] (same seeds): the mean difference, its standard error and
+// the two-sided p-value of Student's paired t-test. p = 1 for fewer than 2 pairs; with no spread
+// in the differences, p = 0 unless they are all 0.
+struct PairedComparison {
+  int n = 0;
+  double meanDifference = 0.0;
+  double standardError = 0.0;
+  double p = 1.0;
+};
+PairedComparison comparePaired(const std::vector<double>& a, const std::vector<double>& b);
+
+// Wilcoxon's signed-rank test (1945) of whether the values are centred on 0 (two-sided): zeros
+// dropped, mid-ranks for ties (Pratt's variant is not used). Exact null distribution up to 30
+// non-zero values, else the normal approximation with tie correction and continuity correction.
+struct SignedRankTest {
+  int n = 0;            // Non-zero values.
+  double wPlus = 0.0;   // Sum of the ranks of the positive values.
+  double p = 1.0;       // Two-sided.
+  double median = 0.0;  // Of all values (zeros included).
+};
+SignedRankTest wilcoxonSignedRank(const std::vector<double>& values);
+
 }  // namespace gpfd::run

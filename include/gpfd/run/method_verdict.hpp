@@ -1,0 +1,54 @@
+// run: what several independent GP runs say about the method on one benchmark. Each run's
+// returned features are assessed (long training, N runs) against the original variables; the
+// verdict is the distribution of the runs' improvements, how many are significant, and Wilcoxon's
+// signed-rank test over the runs' mean differences (one GP run alone cannot tell method from
+// luck).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "gpfd/run/statistics.hpp"
+
+namespace gpfd::run {
+
+// One GP run of a benchmark, as measured after the fact.
+struct RunAssessment {
+  int run = 0;
+  std::uint64_t seed = 0;
+  std::string returned;  // "discovered", "original" (validation kept them) or "gp-best".
+  std::size_t features = 0, size = 0;
+  double gpFitness = 0.0;  // The GP's own best fitness: a biased number, shown for contrast.
+  Summary validated;       // Validation scores of the returned set (n = 0 without validation).
+  Summary remeasured;      // Trial scores of the returned set on fresh seeds.
+  Summary final, area;     // Long assessment.
+  Comparison finalVsOriginal, areaVsOriginal;
+};
+
+struct MethodVerdict {
+  int runs = 0;
+  int betterFinal = 0, worseFinal = 0;  // Runs significantly better / worse (Welch p < 0.05).
+  int betterArea = 0, worseArea = 0;
+  std::vector<double> finalDifferences, areaDifferences;  // Run mean - original mean.
+  SignedRankTest final, area;                             // Over those differences.
+};
+MethodVerdict methodVerdict(const std::vector<RunAssessment>& runs, const Summary& originalFinal,
+                            const Summary& originalArea);
+
+// method-NAME.csv: one row per run, then a row "original" with the original variables' summary.
+std::string formatMethodCsv(const std::vector<RunAssessment>& runs, const Summary& originalFinal,
+                            const Summary& originalArea);
+// Reads formatMethodCsv's output back (the runs; the original row into the two summaries).
+// InputError naming `source` on anything else.
+std::vector<RunAssessment> parseMethodCsv(const std::string& text, const std::string& source,
+                                          Summary& originalFinal, Summary& originalArea);
+
+// Report tables: one row per run; the verdict (with the baseline's, when given, and the
+// Mann-Whitney test of this method's improvements against the baseline's).
+std::vector<std::vector<std::string>> runTable(const std::vector<RunAssessment>& runs,
+                                               const Summary& originalFinal);
+std::vector<std::vector<std::string>> verdictTable(const MethodVerdict& verdict,
+                                                   const MethodVerdict* baseline);
+
+}  // namespace gpfd::run

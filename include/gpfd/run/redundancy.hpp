@@ -1,0 +1,38 @@
+// run: redundant features out of a feature set before it is evaluated. A linear learner gains
+// nothing from a feature that is a linear combination of the others and its bias, but Rprop,
+// which steps every weight by its own amount, moves along a repeated direction n times faster:
+// short trials reward such repeats and long training does not. A feature is redundant when, on a
+// sample of visited states, its values lie in the span of the constant 1, of the original state
+// variables when the learner sees them too, and of the features kept before it.
+#pragma once
+
+#include <memory>
+
+#include "gpfd/expr/genome.hpp"
+#include "gpfd/run/state_sample.hpp"
+
+namespace gpfd::run {
+
+// Relative residual below which a column counts as in the span of the others: far above
+// rounding (about 1e-15 for an exact combination) and far below any real difference between
+// features on visited states (sin(x) against x on |x| <= 0.2 differs by about 7e-3).
+inline constexpr double kDependenceTolerance = 1e-8;
+
+class RedundancyFilter {
+ public:
+  // `minFeatures`: dropped features are kept back, first first, while fewer remain.
+  RedundancyFilter(std::shared_ptr<const FeatureSample> sample, bool withOriginal, int minFeatures);
+  // The genome without its redundant features, the others in their order.
+  expr::Genome operator()(const expr::Genome& genome) const;
+
+ private:
+  std::shared_ptr<const FeatureSample> sample_;
+  bool withOriginal_;
+  int minFeatures_;
+};
+
+// Each feature rescaled to zero mean and unit standard deviation on the sample, as an
+// expression: f -> (f - mean) * (1 / sd). Features constant on the sample are left alone.
+expr::Genome normaliseFeatures(const expr::Genome& genome, const FeatureSample& sample);
+
+}  // namespace gpfd::run

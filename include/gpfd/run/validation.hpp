@@ -1,0 +1,100 @@
+// run: the validation stage that decides what a discovery run returns. The GP's own fitness of
+// its best genome is the maximum of many noisy estimates, so it overstates that genome (the
+// winner's curse). Here the best distinct genomes (a hall of fame) and the original state
+// variables are each trained again on the same fresh validation seeds, and the best mean wins:
+// when no discovered set beats the original variables, the original variables are returned.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "gpfd/expr/features_file.hpp"
+#include "gpfd/gp/fitness_cache.hpp"
+#include "gpfd/run/learning_task.hpp"
+#include "gpfd/run/statistics.hpp"
+
+namespace gpfd::run {
+
+// A feature set scored on the validation seeds.
+struct ValidatedSet {
+  std::string key;      // The genome's canonical key; empty for the original variables.
+  expr::Genome genome;  // Simplified, as the key says (empty for the original variables).
+  int generation = -1;  // The generation after which it was validated.
+  double gpFitness = std::numeric_limits<double>::quiet_NaN();  // Penalised GP fitness then.
+  int gpTrials = 0;                                             // Trials behind gpFitness.
+  std::vector<double> scores;  // One trial score per validation seed, in seed order.
+
+  bool isOriginal() const { return key.empty(); }
+  // Nodes: the genome's, or one per state variable for the original variables.
+  std::size_t size(std::size_t stateDim) const;
+  Summary summary() const { return summarize(scores); }
+};
+
+// A member of the hall of fame: one of the best distinct genomes the cache has scored.
+struct HallOfFameEntry {
+  std::string key;
+  expr::Genome genome;   // Simplified.
+  double fitness = 0.0;  // Mean trial score minus the size penalty.
+  int trials = 0;
+};
+
+// The `size` distinct genomes of the cache with the best penalised mean fitness (finite only),
+// best first; ties keep key order.
+std::vector<HallOfFameEntry> hallOfFame(const std::map<std::string, gp::FitnessRecord>& cache,
+                                        int size, double sizePenalty);
+
+// Trains feature sets on validation seeds: seed m is deriveSeed(config.seed, stream, m) for
+// every set, so sets are compared on paired trials. A trial is one learning run with the
+// validation budget (config.validation.seeds of them per set), scored as GP scores a trial.
+class Validator {
+ public:
+  static constexpr std::uint64_t kValidationStream = 2;
+  // Fresh seeds for re-measuring a returned set, never used by the run itself.
+  static constexpr std::uint64_t kRemeasureStream = 3;
+
+  Validator(const ExperimentConfig& config, int threads, std::uint64_t stream = kValidationStream);
+  // scores[set][m] of the feature maps.
+  std::vector<std::vector<double>> score(
+      const std::vector<std::shared_ptr<const jit::FeatureMap>>& maps) const;
+  // scores[set][m] of genomes as GP sees them (task().featureMap); null: the original variables.
+  std::vector<std::vector<double>> score(const std::vector<const expr::Genome*>& sets) const;
+  const LearningTask& task() const { return task_; }
+
+ private:
+  LearningTask task_;
+  int threads_;
+  std::uint64_t stream_;
+};
+
+// The index of the set with the best mean score; ties go to the smaller set, then to the
+// original variables. `sets` must include the original variables.
+std::size_t chooseWinner(const std::vector<ValidatedSet>& sets, std::size_t stateDim);
+
+// The index of the original variables in `sets`.
+std::size_t originalIndex(const std::vector<ValidatedSet>& sets);
+
+// validation.csv: every set, best mean first, with its comparison to the original variables.
+std::string formatValidationCsv(const std::vector<ValidatedSet>& sets,
+                                const std::vector<std::string>& stateNames);
+// The complexity front: indices of the best validated set at each size, smallest first; a set
+// is on it only where its mean beats every smaller set's.
+std::vector<std::size_t> frontIndices(const std::vector<ValidatedSet>& sets, std::size_t stateDim);
+// front.csv: the front's sets with their scores and expressions.
+std::string formatFrontCsv(const std::vector<ValidatedSet>& sets,
+                           const std::vector<std::string>& stateNames);
+// The front as a text table for the terminal.
+std::string formatFrontTable(const std::vector<ValidatedSet>& sets,
+                             const std::vector<std::string>& stateNames);
+
+// The features file of the validation winner (`prepared`: the genome as the learner sees it,
+// e.g. normalised), with `# validated`, `# original` and `# verdict` lines.
+expr::FeaturesFile winnerFeaturesFile(const std::vector<ValidatedSet>& sets, std::size_t winner,
+                                      const expr::Genome& prepared, const LearningTask& task);
+
+// "MEAN +- SE (M trials)".
+std::string formatMeanSe(const Summary& summary);
+
+}  // namespace gpfd::run

@@ -1,0 +1,172 @@
+#include "gpfd/run/method_verdict.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "gpfd/util/error.hpp"
+
+namespace gpfd::run {
+namespace {
+
+double standardError(const Summary& s) {
+  return s.n > 1 ? s.stddev / std::sqrt(static_cast<double>(s.n)) : 0.0;
+}
+
+std::string meanSe(const Summary& s) {
+  if (s.n == 0) return "-";
+  return fmt::format("{:.4g} ± {:.2g}", s.mean, standardError(s));
+}
+
+std::string percent(double difference, double base) {
+  if (base == 0 || !std::isfinite(difference)) return fmt::format("{:+.4g}", difference);
+  return fmt::format("{:+.1f}%", 100.0 * difference / std::fabs(base));
+}
+
+std::string summaryFields(const Summary& s) {
+  return fmt::format("{},{},{}", s.n, s.mean, s.stddev);
+}
+
+Summary summaryFrom(const std::vector<std::string>& cells, std::size_t at) {
+  Summary s;
+  s.n = std::stoi(cells.at(at));
+  s.mean = std::stod(cells.at(at + 1));
+  s.stddev = std::stod(cells.at(at + 2));
+  return s;
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream in(line);
+  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+  return cells;
+}
+
+const char* kHeader =
+    "run,seed,returned,features,size,gp_fitness,validated_n,validated_mean,validated_sd,"
+    "remeasured_n,remeasured_mean,remeasured_sd,final_n,final_mean,final_sd,area_n,area_mean,"
+    "area_sd,final_welch_p,final_mann_whitney_p,area_welch_p,area_mann_whitney_p";
+
+}  // namespace
+
+MethodVerdict methodVerdict(const std::vector<RunAssessment>& runs, const Summary& originalFinal,
+                            const Summary& originalArea) {
+  MethodVerdict v;
+  v.runs = static_cast<int>(runs.size());
+  for (const auto& r : runs) {
+    const double finalDifference = r.final.mean - originalFinal.mean;
+    const double areaDifference = r.area.mean - originalArea.mean;
+    v.finalDifferences.push_back(finalDifference);
+    v.areaDifferences.push_back(areaDifference);
+    if (r.finalVsOriginal.welchP < 0.05) ++(finalDifference > 0 ? v.betterFinal : v.worseFinal);
+    if (r.areaVsOriginal.welchP < 0.05) ++(areaDifference > 0 ? v.betterArea : v.worseArea);
+  }
+  v.final = wilcoxonSignedRank(v.finalDifferences);
+  v.area = wilcoxonSignedRank(v.areaDifferences);
+  return v;
+}
+
+std::string formatMethodCsv(const std::vector<RunAssessment>& runs, const Summary& originalFinal,
+                            const Summary& originalArea) {
+  std::string csv = std::string(kHeader) + "\n";
+  for (const auto& r : runs) {
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.run, r.seed, r.returned,
+                       r.features, r.size, r.gpFitness, summaryFields(r.validated),
+                       summaryFields(r.remeasured), summaryFields(r.final), summaryFields(r.area),
+                       r.finalVsOriginal.welchP, r.finalVsOriginal.mannWhitneyP,
+                       r.areaVsOriginal.welchP, r.areaVsOriginal.mannWhitneyP);
+  }
+  csv += fmt::format("original,,,,,,0,0,0,0,0,0,{},{},1,1,1,1\n", summaryFields(originalFinal),
+                     summaryFields(originalArea));
+  return csv;
+}
+
+std::vector<RunAssessment> parseMethodCsv(const std::string& text, const std::string& source,
+                                          Summary& originalFinal, Summary& originalArea) {
+  std::vector<RunAssessment> runs;
+  std::stringstream in(text);
+  std::string line;
+  std::getline(in, line);
+  if (line != kHeader) throw InputError("not a method-level results file", source);
+  try {
+    while (std::getline(in, line)) {
+      const auto cells = split(line);
+      if (cells.size() != 22) throw InputError("expected 22 fields: " + line, source);
+      if (cells[0] == "original") {
+        originalFinal = summaryFrom(cells, 12);
+        originalArea = summaryFrom(cells, 15);
+        continue;
+      }
+      RunAssessment r;
+      r.run = std::stoi(cells[0]);
+      r.seed = std::stoull(cells[1]);
+      r.returned = cells[2];
+      r.features = std::stoul(cells[3]);
+      r.size = std::stoul(cells[4]);
+      r.gpFitness = std::stod(cells[5]);
+      r.validated = summaryFrom(cells, 6);
+      r.remeasured = summaryFrom(cells, 9);
+      r.final = summaryFrom(cells, 12);
+      r.area = summaryFrom(cells, 15);
+      r.finalVsOriginal.welchP = std::stod(cells[18]);
+      r.finalVsOriginal.mannWhitneyP = std::stod(cells[19]);
+      r.areaVsOriginal.welchP = std::stod(cells[20]);
+      r.areaVsOriginal.mannWhitneyP = std::stod(cells[21]);
+      runs.push_back(r);
+    }
+  } catch (const std::logic_error& e) {  // std::stoi and friends.
+    throw InputError(std::string("unreadable number: ") + e.what(), source);
+  }
+  return runs;
+}
+
+std::vector<std::vector<std::string>> runTable(const std::vector<RunAssessment>& runs,
+                                               const Summary& originalFinal) {
+  std::vector<std::vector<std::string>> rows{
+      {"run", "returned", "features (nodes)", "GP fitness (biased)", "validated",
+       "re-measured (fresh seeds)", "final", "vs original", "Welch p", "area Welch p"}};
+  for (const auto& r : runs) {
+    rows.push_back({std::to_string(r.run), r.returned, fmt::format("{} ({})", r.features, r.size),
+                    fmt::format("{:.4g}", r.gpFitness), meanSe(r.validated), meanSe(r.remeasured),
+                    fmt::format("{:.4g}", r.final.mean),
+                    percent(r.final.mean - originalFinal.mean, originalFinal.mean),
+                    fmt::format("{:.3g}", r.finalVsOriginal.welchP),
+                    fmt::format("{:.3g}", r.areaVsOriginal.welchP)});
+  }
+  return rows;
+}
+
+std::vector<std::vector<std::string>> verdictTable(const MethodVerdict& v,
+                                                   const MethodVerdict* baseline) {
+  std::vector<std::string> header{"measure", "median change", "runs better (p < 0.05)",
+                                  "runs worse (p < 0.05)", "Wilcoxon signed-rank p"};
+  if (baseline) {
+    header.insert(header.end(), {"baseline: median change", "baseline: Wilcoxon p",
+                                 "vs baseline: Mann-Whitney p"});
+  }
+  std::vector<std::vector<std::string>> rows{header};
+  const auto row = [&](const char* name, const SignedRankTest& test, int better, int worse,
+                       const std::vector<double>& differences, const SignedRankTest* base,
+                       const std::vector<double>* baseDifferences) {
+    std::vector<std::string> cells{
+        name, fmt::format("{:+.4g}", test.median), fmt::format("{} of {}", better, v.runs),
+        fmt::format("{} of {}", worse, v.runs), fmt::format("{:.3g}", test.p)};
+    if (base) {
+      cells.push_back(fmt::format("{:+.4g}", base->median));
+      cells.push_back(fmt::format("{:.3g}", base->p));
+      cells.push_back(
+          differences.size() >= 2 && baseDifferences->size() >= 2
+              ? fmt::format("{:.3g}", compare(differences, *baseDifferences).mannWhitneyP)
+              : "-");
+    }
+    rows.push_back(cells);
+  };
+  row("final performance", v.final, v.betterFinal, v.worseFinal, v.finalDifferences,
+      baseline ? &baseline->final : nullptr, baseline ? &baseline->finalDifferences : nullptr);
+  row("area under the curve", v.area, v.betterArea, v.worseArea, v.areaDifferences,
+      baseline ? &baseline->area : nullptr, baseline ? &baseline->areaDifferences : nullptr);
+  return rows;
+}
+
+}  // namespace gpfd::run

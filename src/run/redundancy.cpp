@@ -1,0 +1,94 @@
+#include "gpfd/run/redundancy.hpp"
+
+#include <Eigen/Core>
+#include <cmath>
+
+namespace gpfd::run {
+namespace {
+
+// An orthonormal basis grown one column at a time (Gram-Schmidt, applied twice for accuracy:
+// "twice is enough", Giraud et al. 2005).
+class Span {
+ public:
+  explicit Span(std::size_t rows) : rows_(rows) {}
+
+  // Adds `values` unless it lies in the span; returns whether it was added.
+  bool add(const std::vector<double>& values) {
+    Eigen::VectorXd v = Eigen::Map<const Eigen::VectorXd>(values.data(), values.size());
+    const double scale = v.cwiseAbs().maxCoeff();
+    if (!(scale > 0) || !std::isfinite(scale)) return false;  // Zero is in every span.
+    v /= scale;  // Saturated values (DBL_MAX) would overflow the norms.
+    const double norm = v.norm();
+    for (int pass = 0; pass < 2; ++pass) {
+      for (const auto& q : basis_) v -= q.dot(v) * q;
+    }
+    const double residual = v.norm();
+    if (!(residual > kDependenceTolerance * norm)) return false;
+    basis_.push_back(v / residual);
+    return true;
+  }
+
+ private:
+  std::size_t rows_;
+  std::vector<Eigen::VectorXd> basis_;
+};
+
+}  // namespace
+
+RedundancyFilter::RedundancyFilter(std::shared_ptr<const FeatureSample> sample, bool withOriginal,
+                                   int minFeatures)
+    : sample_(std::move(sample)), withOriginal_(withOriginal), minFeatures_(minFeatures) {}
+
+expr::Genome RedundancyFilter::operator()(const expr::Genome& genome) const {
+  Span span(sample_->rows());
+  span.add(std::vector<double>(sample_->rows(), 1.0));
+  if (withOriginal_) {
+    for (std::size_t i = 0; i < sample_->stateDim(); ++i) span.add(sample_->variable(i));
+  }
+  std::vector<bool> keep(genome.featureCount());
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < genome.featureCount(); ++k) {
+    keep[k] = span.add(sample_->column(genome, k));
+    kept += keep[k] ? 1 : 0;
+  }
+  for (std::size_t k = 0; k < genome.featureCount() && kept < std::size_t(minFeatures_); ++k) {
+    if (!keep[k]) {
+      keep[k] = true;
+      ++kept;
+    }
+  }
+  if (kept == genome.featureCount()) return genome;
+  expr::Genome out;
+  for (std::size_t k = 0; k < genome.featureCount(); ++k) {
+    if (keep[k]) out.addFeature(genome.feature(k));
+  }
+  return out;
+}
+
+expr::Genome normaliseFeatures(const expr::Genome& genome, const FeatureSample& sample) {
+  expr::Genome out;
+  for (std::size_t k = 0; k < genome.featureCount(); ++k) {
+    const auto values = sample.column(genome, k);
+    double mean = 0.0;
+    for (const double v : values) mean += v;
+    mean /= static_cast<double>(values.size());
+    double squares = 0.0;
+    for (const double v : values) squares += (v - mean) * (v - mean);
+    const double sd = std::sqrt(squares / static_cast<double>(values.size()));
+    const double inverse = 1.0 / sd;
+    if (!(sd > 0) || !std::isfinite(mean) || !std::isfinite(inverse) || !std::isfinite(sd)) {
+      out.addFeature(genome.feature(k));
+      continue;
+    }
+    expr::Tree tree{expr::Node::function(expr::Op::Mul), expr::Node::function(expr::Op::Sub)};
+    const auto feature = genome.feature(k);
+    tree.insert(tree.end(), feature.begin(), feature.end());
+    tree.push_back(expr::Node::constant(mean));
+    tree.push_back(expr::Node::constant(inverse));
+    expr::recomputeLengths(tree);
+    out.addFeature(tree);
+  }
+  return out;
+}
+
+}  // namespace gpfd::run

@@ -1,0 +1,89 @@
+#include "gpfd/run/run_set.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "gpfd/run/validation.hpp"
+#include "gpfd/util/error.hpp"
+
+namespace gpfd::run {
+
+std::uint64_t runSeed(std::uint64_t seed, int run) {
+  constexpr std::uint64_t kRunStream = 0x52554e;
+  return run == 1 ? seed : deriveSeed(seed, kRunStream, run);
+}
+
+std::string runDirName(int run, int runs) {
+  return fmt::format("run-{:0{}d}", run, runs >= 100 ? 3 : 2);
+}
+
+std::unique_ptr<Discovery> startOrResume(const ExperimentConfig& config,
+                                         const DiscoveryOptions& options) {
+  if (std::filesystem::exists(options.outDir + "/config.toml")) {
+    return Discovery::resume(options, config, std::nullopt);
+  }
+  return Discovery::start(config, options);
+}
+
+RunOutcome outcomeOf(const Discovery& discovery, int run) {
+  RunOutcome o;
+  o.run = run;
+  o.seed = discovery.config().seed;
+  o.gpBest = discovery.history().empty() ? 0.0 : discovery.history().back().best;
+  const auto& sets = discovery.validation().sets;
+  const std::size_t dim = discovery.stateDim();
+  if (sets.empty()) {
+    const auto& best = discovery.history().back().bestGenome;
+    o.features = best.featureCount();
+    o.size = best.size();
+    return o;
+  }
+  o.validated = true;
+  const std::size_t winner = chooseWinner(sets, dim);
+  const auto& original = sets[originalIndex(sets)];
+  o.originalWon = sets[winner].isOriginal();
+  o.winner = sets[winner].summary();
+  o.original = original.summary();
+  o.vsOriginal = comparePaired(sets[winner].scores, original.scores);
+  o.features = o.originalWon ? dim : sets[winner].genome.featureCount();
+  o.size = sets[winner].size(dim);
+  return o;
+}
+
+std::string formatRunsCsv(const std::vector<RunOutcome>& outcomes) {
+  std::string csv =
+      "run,seed,gp_best,returned,features,size,validated_mean,validated_se,original_mean,"
+      "original_se,difference,p_vs_original\n";
+  const auto se = [](const Summary& s) {
+    return s.n > 1 ? s.stddev / std::sqrt(static_cast<double>(s.n)) : 0.0;
+  };
+  for (const auto& o : outcomes) {
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", o.run, o.seed, o.gpBest,
+                       !o.validated    ? "gp-best"
+                       : o.originalWon ? "original"
+                                       : "discovered",
+                       o.features, o.size, o.winner.mean, se(o.winner), o.original.mean,
+                       se(o.original), o.vsOriginal.meanDifference, o.vsOriginal.p);
+  }
+  return csv;
+}
+
+std::string formatRunsJson(std::uint64_t seed, int runs) {
+  return nlohmann::json{{"seed", seed}, {"runs", runs}}.dump(1) + "\n";
+}
+
+void parseRunsJson(const std::string& text, const std::string& source, std::uint64_t& seed,
+                   int& runs) {
+  try {
+    const auto j = nlohmann::json::parse(text);
+    seed = j.at("seed").get<std::uint64_t>();
+    runs = j.at("runs").get<int>();
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(std::string("not a runs.json: ") + e.what(), source);
+  }
+  if (runs < 1) throw InputError("not a runs.json: runs must be at least 1", source);
+}
+
+}  // namespace gpfd::run

@@ -1,0 +1,236 @@
+#include "gpfd/run/validation.hpp"
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "gpfd/expr/print.hpp"
+
+namespace gpfd::run {
+namespace {
+
+expr::Genome identityGenome(std::size_t stateDim) {
+  expr::Genome genome;
+  for (std::size_t i = 0; i < stateDim; ++i) {
+    const expr::Node variable = expr::Node::variable(static_cast<int>(i));
+    genome.addFeature(expr::TreeView(&variable, 1));
+  }
+  return genome;
+}
+
+std::string featuresText(const ValidatedSet& set, const std::vector<std::string>& names) {
+  if (set.isOriginal()) return "original variables";
+  std::string text;
+  for (std::size_t k = 0; k < set.genome.featureCount(); ++k) {
+    text += (k > 0 ? " ; " : "") + expr::toInfix(set.genome.feature(k), names);
+  }
+  return text;
+}
+
+// CSV field: quoted, with quotes doubled.
+std::string quoted(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+double standardError(const Summary& s) {
+  return s.n > 1 ? s.stddev / std::sqrt(static_cast<double>(s.n)) : 0.0;
+}
+
+// Indices of `sets`, best mean first (ties: smaller, then original, then key order).
+std::vector<std::size_t> ranking(const std::vector<ValidatedSet>& sets, std::size_t stateDim) {
+  std::vector<double> means;
+  for (const auto& s : sets) means.push_back(s.summary().mean);
+  std::vector<std::size_t> order(sets.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    if (means[a] != means[b]) return means[a] > means[b];
+    if (sets[a].size(stateDim) != sets[b].size(stateDim))
+      return sets[a].size(stateDim) < sets[b].size(stateDim);
+    return sets[a].isOriginal() && !sets[b].isOriginal();
+  });
+  return order;
+}
+
+}  // namespace
+
+std::size_t ValidatedSet::size(std::size_t stateDim) const {
+  return isOriginal() ? stateDim : genome.size();
+}
+
+std::vector<HallOfFameEntry> hallOfFame(const std::map<std::string, gp::FitnessRecord>& cache,
+                                        int size, double sizePenalty) {
+  std::vector<HallOfFameEntry> all;
+  for (const auto& [key, record] : cache) {
+    if (!std::isfinite(record.mean)) continue;
+    expr::Genome genome = gp::genomeFromKey(key);
+    const double fitness = record.mean - sizePenalty * static_cast<double>(genome.size());
+    all.push_back({key, std::move(genome), fitness, record.trials});
+  }
+  std::stable_sort(all.begin(), all.end(), [](const HallOfFameEntry& a, const HallOfFameEntry& b) {
+    return a.fitness > b.fitness;
+  });
+  if (all.size() > static_cast<std::size_t>(size)) all.resize(static_cast<std::size_t>(size));
+  return all;
+}
+
+Validator::Validator(const ExperimentConfig& config, int threads, std::uint64_t stream)
+    : task_(config, LearningTask::Budget::Validation), threads_(threads), stream_(stream) {}
+
+std::vector<std::vector<double>> Validator::score(
+    const std::vector<std::shared_ptr<const jit::FeatureMap>>& maps) const {
+  const auto& config = task_.config();
+  const auto seeds = static_cast<std::size_t>(config.validation.seeds);
+  std::vector<std::vector<double>> scores(maps.size(), std::vector<double>(seeds));
+  tbb::task_arena arena(threads_ > 0 ? threads_ : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, maps.size() * seeds, [&](std::size_t job) {
+      const std::size_t s = job / seeds, m = job % seeds;
+      Rng rng(deriveSeed(config.seed, stream_, m));
+      scores[s][m] = task_.score(task_.train(*maps[s], rng));
+    });
+  });
+  return scores;
+}
+
+std::vector<std::vector<double>> Validator::score(
+    const std::vector<const expr::Genome*>& sets) const {
+  std::vector<std::shared_ptr<const jit::FeatureMap>> maps;
+  for (const auto* genome : sets) {
+    maps.push_back(genome != nullptr
+                       ? task_.featureMap(*genome)
+                       : std::make_shared<const jit::RawFeatureMap>(task_.stateDim()));
+  }
+  return score(maps);
+}
+
+std::size_t originalIndex(const std::vector<ValidatedSet>& sets) {
+  for (std::size_t i = 0; i < sets.size(); ++i) {
+    if (sets[i].isOriginal()) return i;
+  }
+  throw std::logic_error("validation without the original variables");
+}
+
+std::size_t chooseWinner(const std::vector<ValidatedSet>& sets, std::size_t stateDim) {
+  return ranking(sets, stateDim).front();
+}
+
+std::string formatValidationCsv(const std::vector<ValidatedSet>& sets,
+                                const std::vector<std::string>& stateNames) {
+  const std::size_t dim = stateNames.size();
+  const auto& original = sets[originalIndex(sets)];
+  const std::size_t winner = chooseWinner(sets, dim);
+  std::string csv =
+      "rank,set,generation,size,features,gp_fitness,gp_trials,mean,se,sd,seeds,"
+      "difference_vs_original,p_vs_original,selected,expressions\n";
+  int rank = 0;
+  for (const std::size_t i : ranking(sets, dim)) {
+    const auto& s = sets[i];
+    const Summary summary = s.summary();
+    const auto paired = comparePaired(s.scores, original.scores);
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", ++rank,
+                       s.isOriginal() ? "original" : "hall-of-fame", s.generation, s.size(dim),
+                       s.isOriginal() ? dim : s.genome.featureCount(), s.gpFitness, s.gpTrials,
+                       summary.mean, standardError(summary), summary.stddev, summary.n,
+                       paired.meanDifference, s.isOriginal() ? 1.0 : paired.p, i == winner ? 1 : 0,
+                       quoted(featuresText(s, stateNames)));
+  }
+  return csv;
+}
+
+std::vector<std::size_t> frontIndices(const std::vector<ValidatedSet>& sets, std::size_t dim) {
+  const auto ranked = ranking(sets, dim);
+  std::vector<std::size_t> position(sets.size());
+  for (std::size_t r = 0; r < ranked.size(); ++r) position[ranked[r]] = r;
+  std::vector<std::size_t> order(sets.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    if (sets[a].size(dim) != sets[b].size(dim)) return sets[a].size(dim) < sets[b].size(dim);
+    return position[a] < position[b];
+  });
+  std::vector<std::size_t> front;
+  for (const std::size_t i : order) {
+    if (front.empty() || sets[i].summary().mean > sets[front.back()].summary().mean) {
+      front.push_back(i);
+    }
+  }
+  return front;
+}
+
+std::string formatFrontCsv(const std::vector<ValidatedSet>& sets,
+                           const std::vector<std::string>& stateNames) {
+  const std::size_t dim = stateNames.size();
+  const auto& original = sets[originalIndex(sets)];
+  std::string csv = "size,features,mean,se,seeds,p_vs_original,set,expressions\n";
+  for (const std::size_t i : frontIndices(sets, dim)) {
+    const auto& s = sets[i];
+    const Summary summary = s.summary();
+    csv += fmt::format(
+        "{},{},{},{},{},{},{},{}\n", s.size(dim), s.isOriginal() ? dim : s.genome.featureCount(),
+        summary.mean, standardError(summary), summary.n,
+        s.isOriginal() ? 1.0 : comparePaired(s.scores, original.scores).p,
+        s.isOriginal() ? "original" : "hall-of-fame", quoted(featuresText(s, stateNames)));
+  }
+  return csv;
+}
+
+std::string formatFrontTable(const std::vector<ValidatedSet>& sets,
+                             const std::vector<std::string>& stateNames) {
+  const std::size_t dim = stateNames.size();
+  const auto& original = sets[originalIndex(sets)];
+  std::string text = fmt::format("{:>5}  {:>8}  {:<22}  {:>9}  {}\n", "nodes", "features",
+                                 "validated (mean +- SE)", "p vs orig", "features");
+  for (const std::size_t i : frontIndices(sets, dim)) {
+    const auto& s = sets[i];
+    const Summary summary = s.summary();
+    text += fmt::format("{:>5}  {:>8}  {:<22}  {:>9}  {}\n", s.size(dim),
+                        s.isOriginal() ? dim : s.genome.featureCount(),
+                        fmt::format("{:.5g} +- {:.3g}", summary.mean, standardError(summary)),
+                        s.isOriginal()
+                            ? std::string("-")
+                            : fmt::format("{:.3g}", comparePaired(s.scores, original.scores).p),
+                        featuresText(s, stateNames));
+  }
+  return text;
+}
+
+std::string formatMeanSe(const Summary& summary) {
+  return fmt::format("{:.6g} +- {:.3g} ({} trials)", summary.mean, standardError(summary),
+                     summary.n);
+}
+
+expr::FeaturesFile winnerFeaturesFile(const std::vector<ValidatedSet>& sets, std::size_t winner,
+                                      const expr::Genome& prepared, const LearningTask& task) {
+  const auto& config = task.config();
+  const auto& set = sets[winner];
+  const auto& original = sets[originalIndex(sets)];
+  expr::FeaturesFile file;
+  file.env = config.env;
+  file.variables = task.stateNames();
+  file.genome = set.isOriginal() ? identityGenome(task.stateDim()) : prepared;
+  file.meta["experiment"] = config.name;
+  file.meta["seed"] = std::to_string(config.seed);
+  file.meta["validated"] = formatMeanSe(set.summary());
+  file.meta["original"] = formatMeanSe(original.summary());
+  if (set.isOriginal()) {
+    file.meta["verdict"] =
+        "no discovered feature set beat the original variables on validation; these are the "
+        "original variables";
+    return file;
+  }
+  const auto paired = comparePaired(set.scores, original.scores);
+  file.meta["fitness"] = fmt::format("{}", set.gpFitness);
+  file.meta["gp_trials"] = std::to_string(set.gpTrials);
+  file.meta["verdict"] = fmt::format(
+      "beats the original variables on validation by {:.4g} (paired t-test p = {:.3g}{})",
+      paired.meanDifference, paired.p, paired.p < 0.05 ? "" : ", not significant");
+  if (config.normalise) file.meta["normalised"] = "each feature scaled on sampled states";
+  return file;
+}
+
+}  // namespace gpfd::run

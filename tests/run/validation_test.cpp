@@ -1,0 +1,106 @@
+#include "gpfd/run/validation.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "gpfd/expr/parse.hpp"
+#include "gpfd/run/method_verdict.hpp"
+#include "gpfd/util/error.hpp"
+
+namespace gpfd::run {
+namespace {
+
+const expr::VariableNames kNames{"x", "dx", "th", "dth"};
+
+ValidatedSet set(const std::string& features, std::vector<double> scores) {
+  ValidatedSet s;
+  if (!features.empty()) {
+    s.genome.addFeature(expr::parseInfix(features, kNames));
+    s.key = gp::canonicalKey(s.genome);
+  }
+  s.scores = std::move(scores);
+  return s;
+}
+
+TEST(Validation, TheHallOfFameIsTheBestPenalisedMeans) {
+  std::map<std::string, gp::FitnessRecord> cache;
+  const auto key = [](const std::string& f) {
+    expr::Genome g;
+    g.addFeature(expr::parseInfix(f, kNames));
+    return gp::canonicalKey(g);
+  };
+  cache[key("x")] = {10.0, 5};
+  cache[key("sin(th) * dth + dx")] = {10.4, 10};  // 6 nodes: 10.4 - 0.6 = 9.8.
+  cache[key("th")] = {9.95, 5};
+  cache[key("dth")] = {-INFINITY, 5};
+  const auto hof = hallOfFame(cache, 2, 0.1);
+  ASSERT_EQ(hof.size(), 2u);
+  EXPECT_EQ(hof[0].key, key("x"));
+  EXPECT_DOUBLE_EQ(hof[0].fitness, 10.0 - 0.1);
+  EXPECT_EQ(hof[1].key, key("th"));
+  EXPECT_EQ(hallOfFame(cache, 10, 0.1).size(), 3u);  // The diverged genome never enters.
+}
+
+TEST(Validation, TheBestMeanWinsAndTheOriginalWinsTies) {
+  std::vector<ValidatedSet> sets{set("", {1, 2, 3}), set("x", {2, 2, 2}), set("th", {1, 3, 2})};
+  EXPECT_EQ(chooseWinner(sets, 4), 1u);  // Means 2 = 2 = 2: the smallest, first in order.
+  sets[1].genome.addFeature(expr::parseInfix("dx * dx * dx", kNames));  // Now 6 nodes.
+  sets[2].genome.addFeature(expr::parseInfix("dx * dx * dx", kNames));
+  EXPECT_EQ(chooseWinner(sets, 4), 0u);  // Then the original (4 nodes) is the smallest.
+  sets.push_back(set("dx", {3, 3, 3}));
+  EXPECT_EQ(chooseWinner(sets, 4), 3u);
+  sets[0].scores = {5, 5, 5};
+  EXPECT_EQ(chooseWinner(sets, 4), 0u);
+  EXPECT_EQ(originalIndex(sets), 0u);
+}
+
+TEST(Validation, TablesListEverySetAndTheFront) {
+  const std::vector<ValidatedSet> sets{set("", {1, 2, 3}), set("x", {2, 2.5, 3}),
+                                       set("sin(th) * dth", {2.5, 3, 3.5}),
+                                       set("th * th * th * th", {0, 1, 2})};
+  const auto csv = formatValidationCsv(sets, kNames);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);
+  EXPECT_NE(csv.find("1,hall-of-fame,-1,4,1"), std::string::npos);  // Best first, selected.
+  // The front: x (1 node) beats every smaller set; sin(th) * dth (4 nodes) beats x; the
+  // original (4 nodes, worse) and the 7-node set (worse) are not on it.
+  const auto front = formatFrontCsv(sets, kNames);
+  EXPECT_EQ(std::count(front.begin(), front.end(), '\n'), 3);
+  EXPECT_NE(front.find("\"x\""), std::string::npos);
+  EXPECT_NE(front.find("\"sin(th) * dth\""), std::string::npos);
+}
+
+TEST(MethodVerdict, CountsRunsAndReadsBack) {
+  Summary originalFinal{20, 100, 10, 4}, originalArea{20, 50, 5, 2};
+  std::vector<RunAssessment> runs;
+  for (int r = 1; r <= 8; ++r) {
+    RunAssessment a;
+    a.run = r;
+    a.seed = 100 + r;
+    a.returned = r == 8 ? "original" : "discovered";
+    a.final = {20, 100.0 + r, 10, 4};
+    a.area = {20, 50.0 - r, 5, 2};
+    a.finalVsOriginal.welchP = r >= 6 ? 0.01 : 0.5;
+    a.areaVsOriginal.welchP = 0.01;
+    runs.push_back(a);
+  }
+  const auto verdict = methodVerdict(runs, originalFinal, originalArea);
+  EXPECT_EQ(verdict.betterFinal, 3);
+  EXPECT_EQ(verdict.worseArea, 8);
+  EXPECT_NEAR(verdict.final.p, 0.0078125, 1e-12);
+  Summary readFinal, readArea;
+  const auto back = parseMethodCsv(formatMethodCsv(runs, originalFinal, originalArea), "test",
+                                   readFinal, readArea);
+  ASSERT_EQ(back.size(), 8u);
+  EXPECT_EQ(back[7].returned, "original");
+  EXPECT_EQ(back[3].final.mean, 104.0);
+  EXPECT_EQ(readArea.mean, 50.0);
+  const auto again = methodVerdict(back, readFinal, readArea);
+  EXPECT_EQ(again.finalDifferences, verdict.finalDifferences);
+  EXPECT_EQ(verdictTable(verdict, &again).size(), 3u);
+  EXPECT_THROW(parseMethodCsv("run,seed\n1,2\n", "bad.csv", readFinal, readArea), InputError);
+}
+
+}  // namespace
+}  // namespace gpfd::run
