@@ -270,8 +270,8 @@ int evolve(const EvolveOptions& o) {
     auto discovery = run::Discovery::resume(options, expected, o.generations);
     if (discovery->finished()) {
       fmt::print(stderr,
-                 "the run in {} is already complete ({} generations); pass --generations N to "
-                 "extend it\n",
+                 "the run in {0} is already complete (generations: {1}); pass --generations N "
+                 "(more than {1}) to extend it\n",
                  o.resume, discovery->config().gp.generations);
       return 0;
     }

@@ -39,7 +39,8 @@ int main(int argc, char** argv) {
     }
   }
 #endif
-  CLI::App cli{"gpfd: feature discovery for reinforcement learning with genetic programming"};
+  CLI::App cli{"gpfd: feature discovery for reinforcement learning with genetic programming",
+               "gpfd"};
   cli.set_version_flag("--version", std::string("gpfd ") + kVersion + " (" + kRevision + ")");
   cli.require_subcommand(1);
 

@@ -40,10 +40,15 @@ TEST(Concurrency, SecondEvolveIntoTheSameDirectoryIsRefused) {
   EXPECT_NE(readText(dir + "/best.features").find("# seed: 1\n"), std::string::npos);
   EXPECT_NE(readText(dir + "/checkpoint.json").find("seed = 1\\n"), std::string::npos);
   EXPECT_FALSE(std::filesystem::exists(dir + "/" + DirectoryLock::kFileName));
-  // Once the first has ended, the directory can be resumed (and is not overwritten).
-  const auto resumed = runGpfd("evolve --resume " + dir + " --generations 1");
+  // Once the first has ended, the directory can be resumed (and is not overwritten); resuming a
+  // finished run says so.
+  const auto resumed = runGpfd("evolve --quiet --resume " + dir + " --generations 1");
   EXPECT_EQ(resumed.status, 0) << resumed.output;
-  EXPECT_NE(resumed.output.find("already complete"), std::string::npos) << resumed.output;
+  const auto again = runGpfd("evolve --resume " + dir + " --generations 1");
+  EXPECT_EQ(again.status, 0) << again.output;
+  EXPECT_EQ(again.output, "the run in " + dir +
+                              " is already complete (generations: 1); pass --generations N (more "
+                              "than 1) to extend it\n");
 }
 
 TEST(Concurrency, AssessAndReproduceRefuseALockedDirectory) {
