@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "../rl/test_envs.hpp"
 #include "cli_helpers.hpp"
 #include "gpfd/env/environment.hpp"
 #include "gpfd/expr/parse.hpp"
@@ -14,46 +15,15 @@
 namespace gpfd::testing {
 namespace {
 
-// One variable multiplied by `growth` at every step: with a growth of 1e200 it overflows to inf
-// at the second step, and inf - inf then gives NaN.
-class Growing final : public env::Environment {
- public:
-  explicit Growing(double growth) : growth_(growth) {}
-  std::string name() const override { return "growing"; }
-  env::Params params() const override { return {}; }
-  const std::vector<std::string>& stateNames() const override { return names_; }
-  env::ActionSpace actionSpace() const override {
-    env::ActionSpace space;
-    space.kind = env::ActionSpace::Kind::Discrete;
-    space.choices = 2;
-    space.names = {"a"};
-    return space;
-  }
-  void reset(Rng& rng) override {
-    s_ = rng.uniform(0.5, 1.0);
-    steps_ = 0;
-  }
-  std::span<const double> state() const override { return {&s_, 1}; }
-  void setState(std::span<const double> state) override { s_ = state[0]; }
-  env::StepResult step(std::span<const double> action) override {
-    s_ = s_ * growth_ - (s_ * growth_ - s_) * action[0];
-    return {-1.0, false, ++steps_ == 50};
-  }
-
- private:
-  double growth_;
-  double s_ = 1.0;
-  int steps_ = 0;
-  std::vector<std::string> names_{"s"};
-};
-
+// The learners' test environments: a corridor (finite throughout) and one whose state turns to
+// NaN after three steps.
 const bool registered = [] {
-  for (double growth : {1.0, 1e200}) {
-    const std::string name = growth == 1.0 ? "steady-test" : "exploding-test";
-    env::Registry::global().add({name, "test", {}, [growth](const env::Params&) {
-                                   return std::make_unique<Growing>(growth);
-                                 }});
-  }
+  env::Registry::global().add({"corridor-test", "test", {}, [](const env::Params&) {
+                                 return std::make_unique<rl::testing::Corridor>();
+                               }});
+  env::Registry::global().add({"poisoned-test", "test", {}, [](const env::Params&) {
+                                 return std::make_unique<rl::testing::PoisonedEnv>();
+                               }});
   return true;
 }();
 
@@ -71,13 +41,13 @@ double fitnessOn(const std::string& env, const std::string& feature) {
 
 TEST(NonFinite, AnIndividualWhoseSimulationBreaksScoresWorst) {
   ASSERT_TRUE(registered);
-  EXPECT_EQ(fitnessOn("steady-test", "s"), -50.0);
-  // The feature sanitises the broken state (NaN -> 0, inf -> DBL_MAX): still worst.
-  EXPECT_EQ(fitnessOn("exploding-test", "s"), -INFINITY);
-  EXPECT_EQ(fitnessOn("exploding-test", "sin(s) + 1"), -INFINITY);
+  EXPECT_TRUE(std::isfinite(fitnessOn("corridor-test", "x")));
+  // The feature sanitises the broken state (NaN -> 0): still worst.
+  EXPECT_EQ(fitnessOn("poisoned-test", "s"), -INFINITY);
+  EXPECT_EQ(fitnessOn("poisoned-test", "sin(s) + 1"), -INFINITY);
   // The raw variables see it too.
   run::ExperimentConfig config;
-  config.env = "exploding-test";
+  config.env = "poisoned-test";
   config.learnerParams = {{"updates", "3"}};
   const run::LearningTask task(config, run::LearningTask::Budget::Trial);
   Rng rng(2);
