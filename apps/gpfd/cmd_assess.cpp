@@ -7,8 +7,9 @@
 #include "config_loading.hpp"
 #include "gpfd/env/environment.hpp"
 #include "gpfd/expr/features_file.hpp"
+#include "gpfd/rl/learner_params.hpp"
 #include "gpfd/run/assessment.hpp"
-#include "gpfd/util/atomic_file.hpp"
+#include "gpfd/util/directory_lock.hpp"
 #include "gpfd/util/error.hpp"
 #include "param_routing.hpp"
 
@@ -28,8 +29,36 @@ struct AssessOptions {
   std::uint64_t seed = 1;
   int threads = 0;
   std::string out;
+  bool force = false;
   bool quiet = false;
 };
+
+// Policy updates (pg) or iterations (lpi) of one assessment run.
+long long runBudget(const run::ExperimentConfig& config) {
+  auto params = config.learnerParams;
+  for (const auto& [k, v] : config.assessParams) params[k] = v;
+  rl::PolicyGradientConfig pg;
+  rl::LambdaPolicyIterationConfig lpi;
+  for (const auto& [k, v] : params) {
+    (void)(config.learner == "lpi" ? rl::applyLambdaPolicyIterationParam(lpi, k, v)
+                                   : rl::applyPolicyGradientParam(pg, k, v));
+  }
+  return config.learner == "lpi" ? lpi.iterations : pg.updates;
+}
+
+// The results directory: --out (refused when it holds an assessment, unless --force), or a fresh
+// results/assess-ENV (-2, -3, ... when taken), locked against other writers.
+DirectoryLock outputDirectory(const AssessOptions& o, const std::string& env) {
+  if (o.out.empty()) return DirectoryLock::lockFresh("results/assess-" + env);
+  DirectoryLock lock(o.out);
+  if (!o.force && std::filesystem::exists(o.out + "/summary.csv")) {
+    throw InputError(
+        "the directory already holds an assessment; pass --force to replace it, or choose "
+        "another --out",
+        o.out);
+  }
+  return lock;
+}
 
 run::ExperimentConfig assessConfig(const AssessOptions& o) {
   run::ExperimentConfig config;
@@ -85,18 +114,25 @@ int assess(const AssessOptions& o) {
   if (o.fourier > 0) sets.push_back(run::fourierFeatureSet(task, o.fourier));
   if (sets.empty())
     throw InputError("nothing to assess: give --features FILE... or --raw", "gpfd assess");
-  const std::string out = o.out.empty() ? "results/assess-" + config.env : o.out;
-  createDirectories(out);
+  // Every run's curve is kept until the statistics are computed.
+  requireMemory(static_cast<double>(sets.size()) * config.assessRuns *
+                    static_cast<double>(runBudget(config) + 1) * sizeof(rl::CurvePoint),
+                "the learning curves of every run", "--runs, --budget");
+  const DirectoryLock lock = outputDirectory(o, config.env);
+  const std::string& out = lock.directory();
 
   if (!o.quiet) {
     fmt::print("gpfd assess: {} feature sets x {} runs on {} ({}), seed {}\n", sets.size(),
                config.assessRuns, config.env, config.learner, config.seed);
     std::fflush(stdout);
   }
-  const auto result = run::runAssessment(task, sets, config.assessRuns, config.seed, o.threads);
+  const auto result =
+      run::runAssessment(task, sets, config.assessRuns, config.seed, threads(o.threads));
   const auto summary = run::summarizeAssessment(result, 0);
   run::writeAssessment(out, result, summary, config.env + ": " + config.learner,
                        config.learner == "lpi" ? "iteration" : "policy update");
+  int diverged = 0;
+  for (const auto& row : summary) diverged += row.diverged;
   if (!o.quiet) {
     for (const auto& row : summary) {
       fmt::print(
@@ -108,6 +144,12 @@ int assess(const AssessOptions& o) {
     }
     fmt::print("results in {}\n", out);
   }
+  if (diverged > 0) {
+    throw NumericalError(fmt::format("{} of {} runs diverged (non-finite states, features or "
+                                     "weights); summary.csv counts them per set",
+                                     diverged, sets.size() * config.assessRuns),
+                         out);
+  }
   return 0;
 }
 
@@ -118,7 +160,8 @@ const CommandRegistration registration{
           "Train feature sets with the long budget over N runs and test them against the "
           "original state variables");
       auto o = std::make_shared<AssessOptions>();
-      cmd->add_option("env", o->env, "Environment (see gpfd envs); optional with --config");
+      cmd->add_option("env", o->env, "Environment (see gpfd envs); optional with --config")
+          ->check(environmentName());
       cmd->add_option("--config", o->config,
                       "Experiment config (file or shipped name) for the learner");
       cmd->add_option("--features", o->features, "Features files to assess")->expected(1, -1);
@@ -129,16 +172,19 @@ const CommandRegistration registration{
              "--fourier", o->fourier,
              "Also assess the Fourier basis of this order (Konidaris et al. 2011; 3 in the "
              "report); full coupling up to 1024 terms, else independent")
-          ->check(CLI::Range(1, 9));
+          ->check(bounded(1, 9));
       cmd->add_option("--runs", o->runs, "Independent runs per set (default: the config's, 20)")
-          ->check(CLI::PositiveNumber);
+          ->check(bounded(1, kMaxRuns));
       cmd->add_option("--budget", o->budget, "Policy updates (pg) or iterations (lpi) per run")
-          ->check(CLI::PositiveNumber);
+          ->check(bounded(1, kMaxBudget));
       cmd->add_option("--param", o->params, "k=v for the environment or the learner (repeatable)");
-      cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str();
+      cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str()->check(seedValue());
       cmd->add_option("--threads", o->threads, "Worker threads (0: all cores)")
           ->check(threadCount());
-      cmd->add_option("--out", o->out, "Output directory (default results/assess-ENV)");
+      cmd->add_option("--out", o->out,
+                      "Output directory (default results/assess-ENV, or results/assess-ENV-N when "
+                      "taken)");
+      cmd->add_flag("--force", o->force, "Replace the assessment already in --out");
       cmd->add_flag("--quiet", o->quiet, "Print nothing");
       return [o] { return assess(*o); };
     }};

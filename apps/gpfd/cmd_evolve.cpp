@@ -10,9 +10,11 @@
 
 #include "command.hpp"
 #include "config_loading.hpp"
+#include "gpfd/expr/genome.hpp"
 #include "gpfd/run/discovery.hpp"
 #include "gpfd/run/run_set.hpp"
 #include "gpfd/util/atomic_file.hpp"
+#include "gpfd/util/directory_lock.hpp"
 #include "gpfd/util/error.hpp"
 #include "gpfd/version.hpp"
 
@@ -112,14 +114,6 @@ void printSetSummary(const std::vector<run::RunOutcome>& outcomes, const std::st
       outcomes.size(), discovered, significant, test.median, test.p, dir);
 }
 
-// The default results directory: results/<name>, or results/<name>-2, -3, ... when taken, so
-// that running the same command again never collides with an earlier run.
-std::string freshResultsDir(const std::string& base) {
-  std::string dir = base;
-  for (int n = 2; std::filesystem::exists(dir); ++n) dir = base + "-" + std::to_string(n);
-  return dir;
-}
-
 // Runs (or continues) one discovery run with progress output; 0 when finished, 130 when
 // interrupted. `label` prefixes its lines in a set of runs; `resumeDir` is what to resume.
 int runDiscovery(run::Discovery& discovery, const std::string& outDir, const std::string& label,
@@ -204,6 +198,7 @@ int runSet(const run::ExperimentConfig& base, int runs, const run::DiscoveryOpti
     config.seed = run::runSeed(base.seed, r);
     run::DiscoveryOptions one = options;
     one.outDir = options.outDir + "/" + run::runDirName(r, runs);
+    const DirectoryLock lock(one.outDir, "results directory");  // Also against --resume of it.
     std::unique_ptr<run::Discovery> discovery;
     if (std::filesystem::exists(one.outDir + "/config.toml")) {
       discovery = run::Discovery::resume(one, config, generations);
@@ -225,7 +220,7 @@ int runSet(const run::ExperimentConfig& base, int runs, const run::DiscoveryOpti
 int evolve(const EvolveOptions& o) {
   run::DiscoveryOptions options;
   options.outDir = o.resume.empty() ? o.out : o.resume;
-  options.threads = o.threads;
+  options.threads = threads(o.threads);
   options.version = kVersion;
   options.revision = kRevision;
 #ifdef GPFD_HAVE_MPI
@@ -243,6 +238,8 @@ int evolve(const EvolveOptions& o) {
   }
 #endif
   std::signal(SIGINT, onInterrupt);
+  // One writer per results directory, held until the process ends (by an MPI run's master).
+  std::optional<DirectoryLock> lock;
   if (!o.resume.empty()) {
     if (!o.env.empty() || o.seed || o.population || !o.sets.empty() || o.runs) {
       throw InputError(
@@ -252,6 +249,10 @@ int evolve(const EvolveOptions& o) {
     }
     std::optional<run::ExperimentConfig> expected;
     if (!o.config.empty()) expected = loadConfig(o.config, {});
+    if (!std::filesystem::is_directory(o.resume)) {
+      throw InputError("no such results directory", "--resume " + o.resume);
+    }
+    lock.emplace(o.resume, "results directory");
     const std::string runsJson = o.resume + "/runs.json";
     if (std::filesystem::exists(runsJson)) {
       std::uint64_t seed = 0;
@@ -267,13 +268,35 @@ int evolve(const EvolveOptions& o) {
       return runSet(base, runs, options, o.generations, o.quiet);
     }
     auto discovery = run::Discovery::resume(options, expected, o.generations);
+    if (discovery->finished()) {
+      fmt::print(stderr,
+                 "the run in {0} is already complete (generations: {1}); pass --generations N "
+                 "(more than {1}) to extend it\n",
+                 o.resume, discovery->config().gp.generations);
+      return 0;
+    }
     return runDiscovery(*discovery, options.outDir, "", options.outDir, o.quiet);
   }
   const auto config = loadConfig(o.config, overrides(o));
-  if (options.outDir.empty()) options.outDir = freshResultsDir("results/" + config.name);
+  // Parents and offspring with every genome at its size limits.
+  requireMemory(2.0 * config.gp.population * config.limits.maxFeatures * config.limits.maxSize *
+                    static_cast<double>(sizeof(expr::Node)),
+                "the population at its genome size limits",
+                "gp.population x genome.max_features x genome.max_size");
+  // The default results/<name> (or -2, -3, ... when taken) never collides with an earlier run.
+  lock.emplace(options.outDir.empty()
+                   ? DirectoryLock::lockFresh("results/" + config.name, "results directory")
+                   : DirectoryLock(options.outDir, "results directory"));
+  options.outDir = lock->directory();
   const int runs = o.runs.value_or(1);
   if (runs == 1) {
-    auto discovery = run::Discovery::start(config, options);
+    std::unique_ptr<run::Discovery> discovery;
+    try {
+      discovery = run::Discovery::start(config, options);
+    } catch (...) {
+      lock->removeCreatedDirectory();  // Nothing half-made is left behind.
+      throw;
+    }
     return runDiscovery(*discovery, options.outDir, "", options.outDir, o.quiet);
   }
   if (std::filesystem::exists(options.outDir + "/runs.json") ||
@@ -297,14 +320,17 @@ const CommandRegistration registration{
       cmd->add_option("config", o->config,
                       "Experiment config: a TOML file or a shipped config name "
                       "(configs/NAME.toml); default: cartpole-quick");
-      cmd->add_option("--env", o->env, "Environment (overrides env.name)");
-      cmd->add_option("--seed", o->seed, "Random seed (overrides seed)");
+      cmd->add_option("--env", o->env, "Environment (overrides env.name)")
+          ->check(environmentName());
+      cmd->add_option("--seed", o->seed, "Random seed (overrides seed)")->check(seedValue());
       cmd->add_option("--threads", o->threads,
                       "Worker threads (0: all cores); never changes results")
           ->check(threadCount());
-      cmd->add_option("--population", o->population, "Population size (overrides gp.population)");
+      cmd->add_option("--population", o->population, "Population size (overrides gp.population)")
+          ->check(bounded(2, kMaxPopulation));
       cmd->add_option("--generations", o->generations,
-                      "Generations (overrides gp.generations; may extend a resumed run)");
+                      "Generations (overrides gp.generations; may extend a resumed run)")
+          ->check(bounded(1, kMaxGenerations));
       cmd->add_option("--out", o->out,
                       "Results directory (default results/<name>, or results/<name>-N when taken)");
       cmd->add_option("--resume", o->resume, "Continue the run in this results directory");
@@ -313,7 +339,7 @@ const CommandRegistration registration{
       cmd->add_option("--runs", o->runs,
                       "Independent GP runs (1-1000): run r in OUT/run-NN with a seed derived "
                       "from --seed (run 1 uses it as is); runs.csv sums them up")
-          ->check(CLI::Range(1, 1000));
+          ->check(bounded(1, 1000));
       cmd->add_flag("--quiet", o->quiet, "No progress output");
       return [o] { return evolve(*o); };
     }};

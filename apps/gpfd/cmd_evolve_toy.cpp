@@ -8,7 +8,7 @@
 #include "gpfd/expr/simplify.hpp"
 #include "gpfd/run/thread_evaluator.hpp"
 #include "gpfd/run/toy_task.hpp"
-#include "gpfd/util/atomic_file.hpp"
+#include "gpfd/util/directory_lock.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::app {
@@ -28,11 +28,11 @@ int runToy(const ToyOptions& o) {
   auto config = run::toyGpConfig(o.seed);
   if (o.population > 0) config.population = o.population;
   if (o.generations > 0) config.generations = o.generations;
-  createDirectories(o.out);
+  const DirectoryLock lock(o.out);
 
   const run::ToyTask task(o.samples, deriveSeed(o.seed, 7));
   run::ThreadEvaluator evaluator([&task](const expr::Genome& g, Rng&) { return task.rSquared(g); },
-                                 o.threads);
+                                 threads(o.threads));
   gp::Evolution evolution(config, run::toySearchSpace(), evaluator);
   evolution.run([&](const gp::GenerationStats& s) {
     if (!o.quiet) {
@@ -71,15 +71,15 @@ const CommandRegistration registration{
           "Evolve features for the built-in toy regression y = 3 x0 x1 - 2 sin(x2) + 0.5 (fitness: "
           "R^2 of least squares on the features)");
       auto o = std::make_shared<ToyOptions>();
-      cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str();
+      cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str()->check(seedValue());
       cmd->add_option("--out", o->out, "Output directory")->capture_default_str();
       cmd->add_option("--threads", o->threads, "Worker threads (0: all cores)")
           ->check(threadCount());
       cmd->add_option("--population", o->population, "Population size (default 200)")
-          ->check(CLI::PositiveNumber);
+          ->check(bounded(2, kMaxPopulation));
       cmd->add_option("--generations", o->generations, "Generations (default 40)")
-          ->check(CLI::PositiveNumber);
-      cmd->add_option("--samples", o->samples, "Sampled states")->check(CLI::Range(10, 1000000));
+          ->check(bounded(1, kMaxGenerations));
+      cmd->add_option("--samples", o->samples, "Sampled states")->check(bounded(10, 1000000));
       cmd->add_flag("--quiet", o->quiet, "No per-generation lines");
       return [o] { return runToy(*o); };
     }};

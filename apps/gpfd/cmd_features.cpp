@@ -1,12 +1,20 @@
-// `gpfd features show|export FILE`: prints a features file, or exports it as code.
+// `gpfd features show|export|eval FILE`: prints a features file, exports it as code, or prints
+// its feature values at given states.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
 
 #include "command.hpp"
+#include "gpfd/env/params.hpp"
+#include "gpfd/env/simulate.hpp"
 #include "gpfd/expr/export.hpp"
 #include "gpfd/expr/features_file.hpp"
 #include "gpfd/expr/simplify.hpp"
+#include "gpfd/jit/compiled_feature_map.hpp"
 #include "gpfd/run/checkpoint.hpp"
 #include "gpfd/run/learning_task.hpp"
 #include "gpfd/util/atomic_file.hpp"
@@ -22,6 +30,115 @@ struct FeaturesOptions {
   std::string out;     // export only: a file instead of stdout.
   bool front = false;  // show only: the run's complexity front.
 };
+
+// A features file, or a run's results directory standing for its best.features.
+std::string featuresPath(const std::string& given) {
+  if (!std::filesystem::is_directory(given)) return given;
+  if (!std::filesystem::exists(given + "/best.features")) {
+    throw InputError(
+        "a directory without best.features: give a features file or a run's results directory",
+        given);
+  }
+  return given + "/best.features";
+}
+
+struct EvalOptions {
+  std::string file;
+  std::string state;   // v1,v2,...
+  std::string states;  // A CSV file (or - for stdin) with a header naming the variables.
+};
+
+std::vector<std::string> splitFields(const std::string& line) {
+  std::vector<std::string> fields;
+  std::size_t start = 0;
+  for (std::size_t comma; (comma = line.find(',', start)) != std::string::npos; start = comma + 1) {
+    fields.push_back(line.substr(start, comma - start));
+  }
+  fields.push_back(line.substr(start));
+  for (auto& f : fields) {
+    const auto begin = f.find_first_not_of(" \t\r");
+    f = begin == std::string::npos ? "" : f.substr(begin, f.find_last_not_of(" \t\r") - begin + 1);
+  }
+  return fields;
+}
+
+// The states of a CSV whose header names (at least) the features file's variables, in any order;
+// other columns (a `gpfd simulate` trajectory's step, action, reward) are ignored.
+std::vector<std::vector<double>> readStates(std::istream& in, const std::string& source,
+                                            const expr::VariableNames& variables) {
+  std::string line;
+  if (!std::getline(in, line)) throw InputError("empty: no header line", source);
+  const auto header = splitFields(line);
+  std::vector<std::size_t> column;
+  for (const auto& name : variables) {
+    const auto it = std::find(header.begin(), header.end(), name);
+    if (it == header.end()) {
+      throw InputError(fmt::format("the header has no column '{}' (the features file's variables: "
+                                   "{})",
+                                   name, fmt::join(variables, ", ")),
+                       source + ":1");
+    }
+    column.push_back(static_cast<std::size_t>(it - header.begin()));
+  }
+  std::vector<std::vector<double>> states;
+  for (int number = 2; std::getline(in, line); ++number) {
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    const auto fields = splitFields(line);
+    std::vector<double> state;
+    for (std::size_t i = 0; i < column.size(); ++i) {
+      const std::string where = fmt::format("{}:{} column {}", source, number, variables[i]);
+      if (column[i] >= fields.size()) throw InputError("the row is too short", where);
+      state.push_back(env::parseFiniteNumber(fields[column[i]], where));
+    }
+    states.push_back(std::move(state));
+  }
+  return states;
+}
+
+// CSV: a header f1,...,fK, then the features' values at each state, as the JIT computes them
+// (shortest round-trip text, so the numbers read back bit for bit).
+int evaluate(const EvalOptions& o) {
+  if (o.state.empty() == o.states.empty()) {
+    throw InputError("give either --state v1,v2,... or --states FILE", "gpfd features eval");
+  }
+  const auto file = expr::readFeaturesFile(featuresPath(o.file));
+  const std::size_t dim = file.variables.size();
+  std::vector<std::vector<double>> states;
+  if (!o.state.empty()) {
+    states.push_back(env::parseNumberList(o.state, "--state"));
+    if (states[0].size() != dim) {
+      throw InputError(fmt::format("{} values for the {} variables ({})", states[0].size(), dim,
+                                   fmt::join(file.variables, ", ")),
+                       "--state");
+    }
+  } else if (o.states == "-") {
+    states = readStates(std::cin, "stdin", file.variables);
+  } else {
+    if (std::filesystem::is_directory(o.states)) {
+      throw InputError("a directory, not a file", o.states);
+    }
+    std::ifstream in(o.states);
+    if (!in) throw InputError("cannot read the states file", o.states);
+    states = readStates(in, o.states, file.variables);
+  }
+  std::unique_ptr<jit::CompiledFeatureMap> map;
+  try {
+    map = std::make_unique<jit::CompiledFeatureMap>(file.genome, dim);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what(), o.file);
+  }
+  std::string out;
+  for (std::size_t k = 0; k < map->outputDim(); ++k)
+    out += fmt::format("{}f{}", k ? "," : "", k + 1);
+  out += "\n";
+  std::vector<double> features(map->outputDim());
+  for (const auto& state : states) {
+    map->evaluate(state.data(), features.data());
+    out += fmt::format("{}\n", fmt::join(features, ","));
+  }
+  std::fwrite(out.data(), 1, out.size(), stdout);
+  return 0;
+}
 
 // A run directory stands for its best.features; --front prints its validated front instead.
 int showFront(const std::string& dir) {
@@ -43,8 +160,7 @@ int showFront(const std::string& dir) {
 
 int run(const FeaturesOptions& o) {
   if (o.front) return showFront(o.file);
-  auto file = expr::readFeaturesFile(
-      std::filesystem::is_directory(o.file) ? o.file + "/best.features" : o.file);
+  auto file = expr::readFeaturesFile(featuresPath(o.file));
   if (o.simplify) file.genome = expr::simplify(file.genome);
   const std::string text = expr::exportAs(file.genome, file.variables, o.format);
   if (o.out.empty()) {
@@ -62,9 +178,7 @@ CLI::App* addCommand(CLI::App& parent, const char* name, const char* help,
       ->required();
   std::string list;
   for (const auto& f : formats) list += (list.empty() ? "" : "|") + f;
-  cmd->add_option("--format", o->format, list)
-      ->check(CLI::IsMember(formats))
-      ->capture_default_str();
+  cmd->add_option("--format", o->format, list)->check(oneOf(formats))->capture_default_str();
   cmd->add_flag("--simplify", o->simplify, "Simplify algebraically first (values unchanged)");
   return cmd;
 }
@@ -83,7 +197,16 @@ const CommandRegistration registration{
           addCommand(*cmd, "export", "Export features as infix, S-expressions, C, NumPy or LaTeX",
                      {"infix", "sexpr", "c", "python", "latex"}, exported);
       exportCmd->add_option("--out", exported->out, "Write to this file instead of stdout");
-      return [show, exported, showCmd, exportCmd] {
+      auto eval = std::make_shared<EvalOptions>();
+      auto* evalCmd = cmd->add_subcommand(
+          "eval", "Print the feature values (as the JIT computes them) at given states, as CSV");
+      evalCmd->add_option("file", eval->file, "Features file, or a run's directory")->required();
+      evalCmd->add_option("--state", eval->state, "One state: v1,v2,...");
+      evalCmd->add_option("--states", eval->states,
+                          "CSV file (- for stdin) whose header names the variables, e.g. the "
+                          "output of gpfd simulate; other columns are ignored");
+      return [show, exported, eval, showCmd, evalCmd] {
+        if (evalCmd->parsed()) return evaluate(*eval);
         return run(showCmd->parsed() ? *show : *exported);
       };
     }};

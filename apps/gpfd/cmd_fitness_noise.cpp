@@ -39,8 +39,8 @@ int fitnessNoise(const NoiseOptions& o) {
       "{} trials\n",
       config.name, o.run, genomes.size(), o.pairs, o.replications, config.trials);
   std::fflush(stdout);
-  const auto report =
-      run::measureFitnessNoise(config, genomes, o.pairs, o.replications, o.seed, o.threads);
+  const auto report = run::measureFitnessNoise(config, genomes, o.pairs, o.replications, o.seed,
+                                               threads(o.threads));
   fmt::print("pair  sd(a)     sd(b)     var(a-b) paired  var(a-b) unpaired\n");
   for (std::size_t p = 0; p < report.pairs.size(); ++p) {
     const auto& pair = report.pairs[p];
@@ -66,13 +66,13 @@ const CommandRegistration registration{
       auto o = std::make_shared<NoiseOptions>();
       cmd->add_option("run", o->run, "A discovery run's results directory")->required();
       cmd->add_option("--pairs", o->pairs, "Random pairs of genomes (1-1000)")
-          ->check(CLI::Range(1, 1000))
+          ->check(bounded(1, 1000))
           ->capture_default_str();
       cmd->add_option("--replications", o->replications,
                       "Fitness evaluations of each genome per scheme (2-10000)")
-          ->check(CLI::Range(2, 10000))
+          ->check(bounded(2, 10000))
           ->capture_default_str();
-      cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str();
+      cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str()->check(seedValue());
       cmd->add_option("--threads", o->threads, "Worker threads (0: all cores)")
           ->check(threadCount());
       return [o] { return fitnessNoise(*o); };

@@ -1,5 +1,6 @@
 // `gpfd reproduce`: the paper's experiments, figures and report in one command.
 #include <fmt/format.h>
+#include <sys/wait.h>
 
 #include <csignal>
 #include <cstdlib>
@@ -38,7 +39,13 @@ void benchJit(const std::string& dir, bool quick) {
   const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
   const std::string command = fmt::format("'{}' bench jit --out '{}' {} > '{}.log' 2>&1", self, dir,
                                           quick ? "--calls 200000 --runs 3" : "", dir);
-  if (std::system(command.c_str()) != 0 || !std::filesystem::exists(dir + "/jit.csv")) {
+  const int status = std::system(command.c_str());
+  // system() ignores SIGINT while the child runs: Ctrl-C ends the child only.
+  if ((WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) ||
+      (WIFEXITED(status) && WEXITSTATUS(status) == 130)) {
+    throw Interrupted("interrupted; run the same command again to continue", dir);
+  }
+  if (status != 0 || !std::filesystem::exists(dir + "/jit.csv")) {
     throw InputError("gpfd bench jit failed; see " + dir + ".log", dir);
   }
 }
@@ -48,7 +55,7 @@ int reproduceCommand(const ReproduceCli& c) {
   o.paperScale = c.scale == "paper";
   o.seed = c.seed;
   o.outDir = c.out;
-  o.threads = c.threads;
+  o.threads = threads(c.threads);
   o.version = kVersion;
   o.revision = kRevision;
   o.quiet = c.quiet;
@@ -84,9 +91,9 @@ const CommandRegistration registration{
       cmd->add_option("figures", c->figures, "fig1, fig3, fig5, fig6, fig7 or all")
           ->capture_default_str();
       cmd->add_option("--scale", c->scale, "quick (minutes) or paper (the paper's settings)")
-          ->check(CLI::IsMember({"quick", "paper"}))
+          ->check(oneOf({"quick", "paper"}))
           ->capture_default_str();
-      cmd->add_option("--seed", c->seed, "Random seed")->capture_default_str();
+      cmd->add_option("--seed", c->seed, "Random seed")->capture_default_str()->check(seedValue());
       cmd->add_option("--out", c->out, "Output directory")->capture_default_str();
       cmd->add_option("--threads", c->threads, "Worker threads (0: all cores)")
           ->check(threadCount());
@@ -96,7 +103,7 @@ const CommandRegistration registration{
       cmd->add_option("--gp-runs", c->gpRuns,
                       "Independent GP runs per benchmark (1-100), each assessed against the "
                       "original variables; the report gives the method-level verdict")
-          ->check(CLI::Range(1, 100))
+          ->check(bounded(1, 100))
           ->capture_default_str();
       cmd->add_option("--set", c->sets,
                       "Override a key of every benchmark's config: --set validation.candidates=0")

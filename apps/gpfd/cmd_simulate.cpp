@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <optional>
 
 #include "command.hpp"
 #include "gpfd/env/simulate.hpp"
@@ -18,7 +19,7 @@ struct SimulateArgs {
   std::string state;
   std::string actions;
   std::string policy;
-  std::size_t steps = 0;
+  std::optional<long long> steps;
   std::uint64_t seed = 0;
   bool noStop = false;
 };
@@ -48,9 +49,14 @@ int runSimulate(const SimulateArgs& args) {
       request.actionsSource = args.actions;
     }
   } else if (args.policy == "random") {
-    request.randomSteps = args.steps;
-  } else if (!args.policy.empty()) {
-    throw InputError(fmt::format("unknown policy '{}' (known: random)", args.policy), "--policy");
+    if (!args.steps) throw InputError("--policy random needs --steps N", "--policy");
+    request.randomSteps = static_cast<std::size_t>(*args.steps);
+  }
+  if (args.steps && args.policy.empty()) {
+    throw InputError(
+        "--steps counts the steps of --policy random; without a policy or --actions only the "
+        "initial state is printed",
+        "--steps");
   }
   request.seed = args.seed;
   request.stopAtEpisodeEnd = !args.noStop;
@@ -64,14 +70,19 @@ const CommandRegistration registration{
       auto args = std::make_shared<SimulateArgs>();
       auto* cmd = app.add_subcommand(
           "simulate", "Run one environment on given or random actions and write CSV to stdout");
-      cmd->add_option("env", args->env, "environment name (see `gpfd envs`)")->required();
+      cmd->add_option("env", args->env, "environment name (see `gpfd envs`)")
+          ->required()
+          ->check(environmentName());
       cmd->add_option("--param", args->params, "parameter k=v (repeatable)");
       cmd->add_option("--state", args->state, "initial state v1,v2,... (default: a reset)");
       cmd->add_option("--actions", args->actions,
                       "file of actions, one per line, components comma-separated; - for stdin");
-      cmd->add_option("--policy", args->policy, "random: uniformly random legal actions");
-      cmd->add_option("--steps", args->steps, "number of steps of the random policy");
-      cmd->add_option("--seed", args->seed, "seed of the reset and of the random policy");
+      cmd->add_option("--policy", args->policy, "random: uniformly random legal actions")
+          ->check(oneOf({"random"}));
+      cmd->add_option("--steps", args->steps, "number of steps of the random policy")
+          ->check(bounded(0, kMaxSteps));
+      cmd->add_option("--seed", args->seed, "seed of the reset and of the random policy")
+          ->check(seedValue());
       cmd->add_flag("--no-stop", args->noStop, "go on after a terminated or truncated step");
       return [args] { return runSimulate(*args); };
     }};

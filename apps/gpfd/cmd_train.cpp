@@ -225,6 +225,11 @@ int runTrain(const TrainArgs& args) {
     if (evalCount > 0) fmt::print("# greedy evaluation: {:.6g} over {}\n", evalMean, evalCount);
     fmt::print("# wrote {}/curve.csv and {}/weights.json\n", outDir, outDir);
   }
+  if (curve.diverged) {
+    throw NumericalError(fmt::format("training diverged after {} curve rows: {}",
+                                     curve.points.size(), curve.divergedReason),
+                         outDir + "/weights.json");
+  }
   return 0;
 }
 
@@ -232,16 +237,20 @@ const CommandRegistration registration{
     "train", [](CLI::App& app) {
       auto args = std::make_shared<TrainArgs>();
       auto* cmd = app.add_subcommand("train", "Train a linear learner once and write its curve");
-      cmd->add_option("env", args->env, "environment name (see `gpfd envs`)")->required();
+      cmd->add_option("env", args->env, "environment name (see `gpfd envs`)")
+          ->required()
+          ->check(environmentName());
       cmd->add_option("--features", args->features, "features file (default: the raw state)");
       cmd->add_flag("--raw", args->raw, "the raw state variables as features (the default)");
       cmd->add_flag("--add-raw", args->addRaw, "with --features: append the raw state variables");
-      cmd->add_option("--learner", args->learner, "pg | lpi (default: lpi for tetris, else pg)");
+      cmd->add_option("--learner", args->learner, "pg | lpi (default: lpi for tetris, else pg)")
+          ->check(oneOf({"pg", "lpi"}));
       cmd->add_option("--param", args->params,
                       "k=v for the environment or the learner (repeatable)");
-      cmd->add_option("--seed", args->seed, "seed of the run (default 1)");
+      cmd->add_option("--seed", args->seed, "seed of the run (default 1)")->check(seedValue());
       cmd->add_option("--out", args->out, "output directory (default gpfd-train-ENV-SEED)");
-      cmd->add_option("--eval", args->eval, "greedy evaluation episodes after training");
+      cmd->add_option("--eval", args->eval, "greedy evaluation episodes after training")
+          ->check(bounded(0, 100000));
       cmd->add_flag("--quiet", args->quiet, "print nothing");
       return [args] { return runTrain(*args); };
     }};

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "validators.hpp"
+
 namespace gpfd::app {
 
 // Adds a subcommand (and its options) to `app` and returns the function that runs it once the
@@ -19,9 +21,6 @@ struct Command {
 };
 
 std::vector<Command>& commands();
-
-// The check of every --threads option: 0 (all cores) up to a sane bound.
-inline CLI::Range threadCount() { return CLI::Range(0, 4096); }
 
 struct CommandRegistration {
   CommandRegistration(std::string name, CommandSetup setup) {

@@ -1,8 +1,12 @@
 #include "config_loading.hpp"
 
+#include <fmt/format.h>
+
 #include <filesystem>
 
 #include "gpfd/builtin_configs.hpp"
+#include "gpfd/io/suggest.hpp"
+#include "gpfd/util/error.hpp"
 
 namespace gpfd::app {
 
@@ -16,6 +20,16 @@ run::ExperimentConfig loadConfig(const std::string& config,
         return run::parseExperimentConfig(std::string(builtin.text), "configs/" + name + ".toml",
                                           overrides);
       }
+    }
+    // A bare name (no directory, no .toml) was meant as a shipped config.
+    if (name.find('/') == std::string::npos && !name.ends_with(".toml")) {
+      const auto names = builtinConfigNames();
+      const std::string suggestion = io::didYouMean(name, names);
+      throw InputError(
+          "neither a file nor a shipped config" +
+              (suggestion.empty() ? fmt::format(" (shipped: {})", fmt::join(names, ", "))
+                                  : suggestion),
+          name);
     }
   }
   return run::loadExperimentConfig(config, overrides);

@@ -1,10 +1,12 @@
 // gpfd: the command-line tool. It only parses arguments and calls the library; every error is
-// reported here once, as `error: <what> (<where>)`.
+// reported here once, as `error: <what> (<where>)`. Exit codes: 0 success, 1 internal error,
+// 2 bad input, 3 numerical failure (non-finite states or learning), 130 interrupted.
 #include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <string>
 
+#include "cli_errors.hpp"
 #include "command.hpp"
 #include "gpfd/util/error.hpp"
 #include "gpfd/version.hpp"
@@ -37,7 +39,8 @@ int main(int argc, char** argv) {
     }
   }
 #endif
-  CLI::App cli{"gpfd: feature discovery for reinforcement learning with genetic programming"};
+  CLI::App cli{"gpfd: feature discovery for reinforcement learning with genetic programming",
+               "gpfd"};
   cli.set_version_flag("--version", std::string("gpfd ") + kVersion + " (" + kRevision + ")");
   cli.require_subcommand(1);
 
@@ -51,11 +54,17 @@ int main(int argc, char** argv) {
     for (std::size_t i = before; i < subs.size(); ++i) runners.emplace_back(subs[i], run);
   }
 
+  if (argc == 1) {  // Plain `gpfd`: the list of commands.
+    std::fputs(cli.help().c_str(), stdout);
+    return 0;
+  }
   try {
     cli.parse(argc, argv);
+  } catch (const CLI::Success& e) {  // --help, --version.
+    return cli.exit(e);
   } catch (const CLI::ParseError& e) {
-    const int code = cli.exit(e);
-    return code == 0 ? 0 : 2;
+    std::fprintf(stderr, "error: %s\n", app::describeParseError(cli, e).message().c_str());
+    return 2;
   }
   try {
 #ifdef GPFD_HAVE_MPI
@@ -73,6 +82,12 @@ int main(int argc, char** argv) {
   } catch (const InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.message().c_str());
     return 2;
+  } catch (const NumericalError& e) {
+    std::fprintf(stderr, "error: %s\n", e.message().c_str());
+    return 3;
+  } catch (const Interrupted& e) {
+    std::fprintf(stderr, "%s\n", e.message().c_str());
+    return 130;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;

@@ -28,6 +28,24 @@ void appendRow(std::string& out, std::size_t step, std::span<const double> actio
   }
 }
 
+// A state or reward that is no longer a finite number ends the simulation: what follows would be
+// meaningless (NumericalError, exit code 3 in the CLI).
+void requireFinite(const Environment& env, const StepResult& result, std::size_t step,
+                   const std::string& name) {
+  const auto state = env.state();
+  for (std::size_t i = 0; i < state.size(); ++i) {
+    if (!std::isfinite(state[i])) {
+      throw NumericalError(
+          fmt::format("non-finite state at step {}: {} = {}", step, env.stateNames()[i], state[i]),
+          name);
+    }
+  }
+  if (!std::isfinite(result.reward)) {
+    throw NumericalError(fmt::format("non-finite reward at step {}: {}", step, result.reward),
+                         name);
+  }
+}
+
 }  // namespace
 
 std::vector<double> parseNumberList(const std::string& text, const std::string& where) {
@@ -107,6 +125,7 @@ std::string simulateCsv(const SimulationRequest& request) {
     } catch (const InputError& e) {
       throw InputError(e.what(), where);
     }
+    requireFinite(*env, result, t + 1, request.env);
     appendRow(out, t + 1, action, space.components, env->state(), &result);
     if (request.stopAtEpisodeEnd && (result.terminated || result.truncated)) break;
   }

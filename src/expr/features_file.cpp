@@ -1,6 +1,7 @@
 #include "gpfd/expr/features_file.hpp"
 
 #include <sstream>
+#include <string_view>
 
 #include "gpfd/expr/parse.hpp"
 #include "gpfd/util/atomic_file.hpp"
@@ -48,7 +49,9 @@ FeaturesFile parseFeaturesFile(const std::string& text, const std::string& sourc
                                const std::string& expectedEnv) {
   FeaturesFile file;
   std::vector<std::pair<int, std::string>> featureLines;
-  std::istringstream in(text);
+  // A UTF-8 byte-order mark (some editors write one) is not part of the text.
+  constexpr std::string_view kBom = "\xEF\xBB\xBF";
+  std::istringstream in(text.starts_with(kBom) ? text.substr(kBom.size()) : text);
   std::string line;
   int lineNumber = 0;
   bool sawVariables = false;

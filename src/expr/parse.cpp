@@ -1,8 +1,10 @@
 #include "gpfd/expr/parse.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <vector>
 
 #include "gpfd/util/error.hpp"
 
@@ -127,27 +129,100 @@ class Cursor {
   std::size_t pos_ = 0;
 };
 
-Tree combine(Op op, const std::vector<Tree>& children) {
-  Tree out{Node::function(op)};
-  for (const auto& c : children) out.insert(out.end(), c.begin(), c.end());
-  return out;
-}
+// A parsed subtree in prefix order with its depth (a leaf has depth 1).
+struct Sub {
+  Tree tree;
+  int depth = 1;
+};
 
-// Checks the finished tree's depth and size, and that nothing follows it.
-Tree finish(Tree tree, Cursor& cursor, int maxDepth, int maxSize) {
+// Builds trees within the depth and size limits, failing at the first node that crosses one, so
+// that hostile input costs no more than the limits allow.
+class Limits {
+ public:
+  Limits(Cursor& cursor, int maxDepth, int maxSize)
+      : c_(cursor), maxDepth_(maxDepth), maxSize_(maxSize) {}
+
+  // A leaf read at `at`.
+  Sub leaf(Node node, std::size_t at) {
+    count(at);
+    return {Tree{node}, 1};
+  }
+
+  // op(children...), the operator read at `at`. Each child's nodes are copied once; a node is
+  // copied once per level above it, so the work is at most size x depth.
+  Sub apply(Op op, std::vector<Sub> children, std::size_t at) {
+    count(at);
+    Sub out{Tree{Node::function(op)}, 0};
+    std::size_t size = 1;
+    for (const auto& child : children) size += child.tree.size();
+    out.tree.reserve(size);
+    for (auto& child : children) {
+      out.tree.insert(out.tree.end(), child.tree.begin(), child.tree.end());
+      out.depth = std::max(out.depth, child.depth);
+    }
+    out.depth = checkDepth(out.depth + 1, at);
+    return out;
+  }
+
+  // A left-associative chain t0 op1 t1 op2 t2 ...: its prefix form is op_k ... op1 t0 t1 ... tk,
+  // built once at the end (no copying of the growing left tree at every operator).
+  class Chain {
+   public:
+    Chain(Limits& limits, Sub first)
+        : limits_(limits), first_(std::move(first)), depth_(first_.depth) {}
+    void add(Op op, Sub operand, std::size_t at) {
+      limits_.count(at);
+      depth_ = limits_.checkDepth(std::max(depth_, operand.depth) + 1, at);
+      size_ += 1 + operand.tree.size();
+      ops_.push_back(op);
+      rest_.push_back(std::move(operand));
+    }
+    Sub finish() {
+      if (ops_.empty()) return std::move(first_);  // A lone operand: nothing allocated.
+      Sub out{{}, depth_};
+      out.tree.reserve(first_.tree.size() + size_);
+      for (auto op = ops_.rbegin(); op != ops_.rend(); ++op)
+        out.tree.push_back(Node::function(*op));
+      out.tree.insert(out.tree.end(), first_.tree.begin(), first_.tree.end());
+      for (const auto& operand : rest_) {
+        out.tree.insert(out.tree.end(), operand.tree.begin(), operand.tree.end());
+      }
+      return out;
+    }
+
+   private:
+    Limits& limits_;
+    Sub first_;
+    std::vector<Op> ops_;
+    std::vector<Sub> rest_;
+    std::size_t size_ = 0;  // Nodes of the operators and of rest_.
+    int depth_ = 1;
+  };
+
+ private:
+  void count(std::size_t at) {
+    if (++nodes_ > maxSize_) {
+      c_.fail("too large: more than the limit of " + std::to_string(maxSize_) + " nodes", at);
+    }
+  }
+  int checkDepth(int depth, std::size_t at) {
+    if (depth > maxDepth_) {
+      c_.fail("too deep: depth exceeds the limit of " + std::to_string(maxDepth_), at);
+    }
+    return depth;
+  }
+
+  Cursor& c_;
+  int maxDepth_;
+  int maxSize_;
+  int nodes_ = 0;
+};
+
+// Checks that nothing follows the expression and completes its subtree lengths.
+Tree finish(Sub sub, Cursor& cursor) {
   if (!cursor.atEnd()) cursor.fail("unexpected text after the expression", cursor.pos());
-  recomputeLengths(tree);
-  if (static_cast<int>(tree.size()) > maxSize) {
-    cursor.fail("too large: " + std::to_string(tree.size()) + " nodes exceed the limit of " +
-                    std::to_string(maxSize),
-                0);
-  }
-  if (const int d = depth(tree); d > maxDepth) {
-    cursor.fail("too deep: depth " + std::to_string(d) + " exceeds the limit of " +
-                    std::to_string(maxDepth),
-                0);
-  }
-  return tree;
+  recomputeLengths(sub.tree);
+  return std::move(sub.tree);
 }
 
 // Recursive-descent infix parser:
@@ -155,77 +230,81 @@ Tree finish(Tree tree, Cursor& cursor, int maxDepth, int maxSize) {
 //   unary := '-' unary | primary                primary := number | call | variable | '(' sum ')'
 class InfixParser {
  public:
-  InfixParser(Cursor& cursor, const VariableNames& names, int nestingLimit)
-      : c_(cursor), names_(names), nestingLimit_(nestingLimit) {}
+  InfixParser(Cursor& cursor, const VariableNames& names, int nestingLimit, Limits& limits)
+      : c_(cursor), names_(names), nestingLimit_(nestingLimit), limits_(limits) {}
 
-  Tree sum() {
-    Tree left = product();
+  Sub sum() {
+    Limits::Chain chain(limits_, product());
     for (;;) {
+      const std::size_t at = c_.pos();
       if (c_.accept('+')) {
-        left = combine(Op::Add, {left, product()});
+        chain.add(Op::Add, product(), at);
       } else if (c_.peek() == '-') {
         c_.advance();
-        left = combine(Op::Sub, {left, product()});
+        chain.add(Op::Sub, product(), at);
       } else {
-        return left;
+        return chain.finish();
       }
     }
   }
 
  private:
-  Tree product() {
-    Tree left = unary();
+  Sub product() {
+    Limits::Chain chain(limits_, unary());
     for (;;) {
+      const std::size_t at = c_.pos();
       if (c_.accept('*')) {
-        left = combine(Op::Mul, {left, unary()});
+        chain.add(Op::Mul, unary(), at);
       } else if (c_.accept('/')) {
-        left = combine(Op::Div, {left, unary()});
+        chain.add(Op::Div, unary(), at);
       } else {
-        return left;
+        return chain.finish();
       }
     }
   }
 
-  Tree unary() {
+  Sub unary() {
     const Nest nest(*this);
     if (c_.peek() == '-') {
       const std::size_t at = c_.pos();
       c_.advance();
       const char next = c_.peek();
       if (std::isdigit(static_cast<unsigned char>(next)) || next == '.') {
-        return {Node::constant(c_.number(true, at))};
+        return limits_.leaf(Node::constant(c_.number(true, at)), at);
       }
-      return combine(Op::Neg, {unary()});
+      std::vector<Sub> operand;
+      operand.push_back(unary());
+      return limits_.apply(Op::Neg, std::move(operand), at);
     }
     return primary();
   }
 
-  Tree primary() {
+  Sub primary() {
     const char next = c_.peek();
     const std::size_t at = c_.pos();
     if (next == '\0')
       c_.fail("empty expression" + std::string(at > 0 ? " after operator" : ""), at);
     if (std::isdigit(static_cast<unsigned char>(next)) || next == '.') {
-      return {Node::constant(c_.number(false, at))};
+      return limits_.leaf(Node::constant(c_.number(false, at)), at);
     }
     if (c_.accept('(')) {
-      Tree inner = sum();
+      Sub inner = sum();
       c_.expect(')', "')'");
       return inner;
     }
     if (std::isalpha(static_cast<unsigned char>(next)) || next == '_') {
       const std::string_view name = c_.identifier();
       if (c_.peek() == '(') return call(name, at);
-      return {c_.variable(name, at, names_)};
+      return limits_.leaf(c_.variable(name, at, names_), at);
     }
     c_.fail(std::string("unexpected '") + next + "'", at);
   }
 
-  Tree call(std::string_view name, std::size_t at) {
+  Sub call(std::string_view name, std::size_t at) {
     const auto op = opFromName(name);
     if (!op) c_.fail("unknown operator '" + std::string(name) + "'", at);
     c_.expect('(', "'('");
-    std::vector<Tree> args;
+    std::vector<Sub> args;
     if (c_.peek() != ')') {
       do {
         args.push_back(sum());
@@ -233,7 +312,7 @@ class InfixParser {
     }
     c_.expect(')', "')' or ','");
     checkArity(c_, *op, static_cast<int>(args.size()), at);
-    return combine(*op, args);
+    return limits_.apply(*op, std::move(args), at);
   }
 
  public:
@@ -263,15 +342,16 @@ class InfixParser {
   Cursor& c_;
   const VariableNames& names_;
   int nestingLimit_;
+  Limits& limits_;
   int nesting_ = 0;
 };
 
 class SexprParser {
  public:
-  SexprParser(Cursor& cursor, const VariableNames& names, int nestingLimit)
-      : c_(cursor), names_(names), nestingLimit_(nestingLimit) {}
+  SexprParser(Cursor& cursor, const VariableNames& names, int nestingLimit, Limits& limits)
+      : c_(cursor), names_(names), nestingLimit_(nestingLimit), limits_(limits) {}
 
-  Tree expression(int nesting = 1) {
+  Sub expression(int nesting = 1) {
     const std::size_t at = c_.pos();
     if (nesting > nestingLimit_) {
       c_.fail("too deep: nesting exceeds the limit of " + std::to_string(nestingLimit_), at);
@@ -280,24 +360,24 @@ class SexprParser {
     if (next == '\0') c_.fail("empty expression", at);
     if (c_.accept('(')) return list(nesting);
     if (next == ')') c_.fail("unexpected ')'", c_.pos());
-    return {atom()};
+    return atom();
   }
 
  private:
-  Tree list(int nesting) {
+  Sub list(int nesting) {
     const std::size_t at = c_.pos();
     const std::string symbol = token();
     if (symbol.empty()) c_.fail("expected an operator after '('", at);
     const auto op = opFromName(symbol);
     if (!op) c_.fail("unknown operator '" + symbol + "'", at);
-    std::vector<Tree> args;
+    std::vector<Sub> args;
     while (c_.peek() != ')' && c_.peek() != '\0') args.push_back(expression(nesting + 1));
     c_.expect(')', "')'");
     InfixParser::checkArity(c_, *op, static_cast<int>(args.size()), at);
-    return combine(*op, args);
+    return limits_.apply(*op, std::move(args), at);
   }
 
-  Node atom() {
+  Sub atom() {
     const std::size_t at = c_.pos();
     const char first = c_.peek();
     const char second = c_.peekAt(1);
@@ -305,11 +385,11 @@ class SexprParser {
     if (std::isdigit(static_cast<unsigned char>(first)) || first == '.' ||
         (sign && (std::isdigit(static_cast<unsigned char>(second)) || second == '.'))) {
       if (sign) c_.advance();
-      return Node::constant(c_.number(first == '-', at));
+      return limits_.leaf(Node::constant(c_.number(first == '-', at)), at);
     }
     if (std::isalpha(static_cast<unsigned char>(first)) || first == '_') {
       const std::string_view name = c_.identifier();
-      return c_.variable(name, at, names_);
+      return limits_.leaf(c_.variable(name, at, names_), at);
     }
     c_.fail(std::string("unexpected '") + first + "'", at);
   }
@@ -330,6 +410,7 @@ class SexprParser {
   Cursor& c_;
   const VariableNames& names_;
   int nestingLimit_;
+  Limits& limits_;
 };
 
 }  // namespace
@@ -338,16 +419,18 @@ Tree parseInfix(std::string_view text, const VariableNames& names, const SourceP
                 int maxDepth, int maxSize) {
   Cursor cursor(text, place);
   if (cursor.atEnd()) cursor.fail("empty expression", 0);
-  InfixParser parser(cursor, names, 2 * kMaxParseDepth);
-  return finish(parser.sum(), cursor, maxDepth, maxSize);
+  Limits limits(cursor, maxDepth, maxSize);
+  InfixParser parser(cursor, names, 2 * kMaxParseDepth, limits);
+  return finish(parser.sum(), cursor);
 }
 
 Tree parseSexpr(std::string_view text, const VariableNames& names, const SourcePlace& place,
                 int maxDepth, int maxSize) {
   Cursor cursor(text, place);
   if (cursor.atEnd()) cursor.fail("empty expression", 0);
-  SexprParser parser(cursor, names, kMaxParseDepth);
-  return finish(parser.expression(), cursor, maxDepth, maxSize);
+  Limits limits(cursor, maxDepth, maxSize);
+  SexprParser parser(cursor, names, kMaxParseDepth, limits);
+  return finish(parser.expression(), cursor);
 }
 
 }  // namespace gpfd::expr

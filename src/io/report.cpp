@@ -1,5 +1,7 @@
 #include "gpfd/io/report.hpp"
 
+#include <fmt/format.h>
+
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -136,7 +138,8 @@ std::string Report::html(const std::string& directory) const {
   for (const auto& b : blocks_) {
     switch (b.kind) {
       case Block::Kind::Heading: {
-        const std::string tag = "h" + std::to_string(b.level);
+        // Not "h" + std::to_string(...): GCC 12 -O3 gives a false -Wrestrict on that.
+        const std::string tag = fmt::format("h{}", b.level);
         out += "<" + tag + ">" + inlineHtml(b.text) + "</" + tag + ">\n";
         break;
       }

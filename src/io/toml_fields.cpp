@@ -27,10 +27,13 @@ std::vector<std::string> split(const std::string& dotted) {
   return parts;
 }
 
-// file:line:column of a node; "--set" for a node that came from a command-line override.
-std::string place(const std::string& source, const toml::node* node) {
+bool fromOverride(const toml::node* node) { return node != nullptr && !node->source().begin; }
+
+// file:line:column of the node of `key`; "--set key" for a node that came from a command-line
+// override.
+std::string place(const std::string& source, const toml::node* node, const std::string& key) {
   if (node == nullptr) return source;
-  if (!node->source().begin) return "--set";
+  if (fromOverride(node)) return "--set " + key;
   return fmt::format("{}:{}:{}", source, node->source().begin.line, node->source().begin.column);
 }
 
@@ -68,12 +71,13 @@ void TomlReader::fail(const std::string& section, const std::string& key,
                       const std::string& what) const {
   const std::string full = join(section, key);
   const toml::node* node = root_.at_path(full).node();
-  throw InputError(full + " " + what, place(source_, node));
+  throw InputError(full + " " + what, place(source_, node, full));
 }
 
 std::string TomlReader::where(const std::string& section, const std::string& key) const {
   const std::string full = join(section, key);
-  return place(source_, root_.at_path(full).node()) + " " + full;
+  const toml::node* node = root_.at_path(full).node();
+  return place(source_, node, full) + (fromOverride(node) ? "" : " " + full);
 }
 
 void TomlReader::read(const std::string& section, const std::string& key, std::string& out,
@@ -190,7 +194,7 @@ void TomlReader::finish() const {
             siblings.push_back(dot == std::string::npos ? known : known.substr(dot + 1));
         }
         throw InputError("unknown key '" + full + "'" + didYouMean(std::string(k.str()), siblings),
-                         place(source_, &v));
+                         place(source_, &v, full));
       }
       if (const toml::table* nested = v.as_table()) stack.emplace_back(full, nested);
     }

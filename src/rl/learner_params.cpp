@@ -45,8 +45,12 @@ bool boolean(const std::string& key, const std::string& text) {
   throw InputError("'" + text + "' is not a boolean (true|false)", where(key));
 }
 
-constexpr int kIntMax = std::numeric_limits<int>::max();
 constexpr double kHuge = std::numeric_limits<double>::max();
+// Budgets and counts: bounded so that a learning curve (one row per update or iteration) and an
+// episode stay within memory and time a machine has.
+constexpr int kMaxUpdates = 1000000;
+constexpr int kMaxBatch = 1000000;           // Episodes per update, games per iteration.
+constexpr long long kMaxSteps = 1000000000;  // Steps of an episode, moves of a game.
 
 bool applyFeatureParam(FeatureOptions& options, const std::string& key, const std::string& value) {
   if (key == "bias") {
@@ -64,11 +68,11 @@ bool applyFeatureParam(FeatureOptions& options, const std::string& key, const st
 bool applyPolicyGradientParam(PolicyGradientConfig& c, const std::string& key,
                               const std::string& value) {
   if (key == "updates") {
-    c.updates = static_cast<int>(integer(key, value, 0, kIntMax - 1));
+    c.updates = static_cast<int>(integer(key, value, 0, kMaxUpdates));
   } else if (key == "episodes") {
-    c.episodesPerUpdate = static_cast<int>(integer(key, value, 1, kIntMax));
+    c.episodesPerUpdate = static_cast<int>(integer(key, value, 1, kMaxBatch));
   } else if (key == "max_episode_steps") {
-    c.maxEpisodeSteps = static_cast<int>(integer(key, value, 1, kIntMax));
+    c.maxEpisodeSteps = static_cast<int>(integer(key, value, 1, kMaxSteps));
   } else if (key == "max_total_steps") {
     c.maxTotalSteps = integer(key, value, 0, std::numeric_limits<long long>::max());
   } else if (key == "discount") {
@@ -109,9 +113,9 @@ bool applyPolicyGradientParam(PolicyGradientConfig& c, const std::string& key,
 bool applyLambdaPolicyIterationParam(LambdaPolicyIterationConfig& c, const std::string& key,
                                      const std::string& value) {
   if (key == "iterations") {
-    c.iterations = static_cast<int>(integer(key, value, 0, kIntMax - 1));
+    c.iterations = static_cast<int>(integer(key, value, 0, kMaxUpdates));
   } else if (key == "games") {
-    c.gamesPerIteration = static_cast<int>(integer(key, value, 1, kIntMax));
+    c.gamesPerIteration = static_cast<int>(integer(key, value, 1, kMaxBatch));
   } else if (key == "lambda") {
     c.lambda = number(key, value, 0.0, 1.0);
   } else if (key == "ridge") {
@@ -119,7 +123,7 @@ bool applyLambdaPolicyIterationParam(LambdaPolicyIterationConfig& c, const std::
   } else if (key == "step") {
     c.stepSize = number(key, value, 1e-12, 1.0);
   } else if (key == "max_moves") {
-    c.maxMovesPerGame = integer(key, value, 1, std::numeric_limits<long long>::max());
+    c.maxMovesPerGame = integer(key, value, 1, kMaxSteps);
   } else if (key == "game_over") {
     if (value != "avoid" && value != "zero") {
       throw InputError("'" + value + "' is not a game-over choice (avoid|zero)", where(key));

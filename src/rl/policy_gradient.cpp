@@ -1,5 +1,6 @@
 #include "gpfd/rl/policy_gradient.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <vector>
@@ -14,7 +15,7 @@ struct EpisodeOutcome {
   double undiscounted = 0.0;
   double discounted = 0.0;
   std::int64_t steps = 0;
-  bool ok = true;  // False: a non-finite feature, action or reward.
+  bool ok = true;  // False: a non-finite state, feature, action or reward.
 };
 
 // Buffers of one run, allocated once; the step loop allocates nothing.
@@ -54,7 +55,11 @@ EpisodeOutcome runEpisode(env::Environment& env, FeaturePipeline& features, Line
     }
     const env::StepResult result = env.step(action);
     ++outcome.steps;
-    if (!std::isfinite(result.reward)) {
+    // A non-finite state is caught here, not by the features: GP's features map it to finite
+    // values (ops.hpp), which would hide a broken simulation.
+    const auto state = env.state();
+    if (!std::isfinite(result.reward) ||
+        !std::all_of(state.begin(), state.end(), [](double v) { return std::isfinite(v); })) {
       outcome.ok = false;
       return outcome;
     }
@@ -108,7 +113,7 @@ LearningCurve trainPolicyGradient(env::Environment& env, const jit::FeatureMap& 
       if (!outcome.ok || !std::isfinite(outcome.discounted) ||
           !std::isfinite(ws.eligibility.sum())) {
         curve.diverged = true;
-        curve.divergedReason = "non-finite feature, action, return or likelihood gradient";
+        curve.divergedReason = "non-finite state, feature, action, return or likelihood gradient";
         break;
       }
       sum += outcome.undiscounted;

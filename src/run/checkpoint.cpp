@@ -141,7 +141,12 @@ Checkpoint parseCheckpoint(const std::string& text, const std::string& source) {
     c.validation.seconds = validation.at("seconds").get<double>();
     return c;
   } catch (const json::exception& e) {
-    throw InputError(std::string("corrupt checkpoint: ") + e.what(), source);
+    // The parser quotes what it last read, which can be the whole stored config: cut it.
+    std::string what = e.what();
+    if (const auto quote = what.find("; last read: "); quote != std::string::npos) {
+      what.resize(quote);
+    }
+    throw InputError("corrupt checkpoint: " + what, source);
   } catch (const InputError& e) {
     throw InputError("corrupt checkpoint: " + e.message(), source);
   }

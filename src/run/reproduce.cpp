@@ -18,6 +18,7 @@
 #include "gpfd/run/run_set.hpp"
 #include "gpfd/run/validation.hpp"
 #include "gpfd/util/atomic_file.hpp"
+#include "gpfd/util/directory_lock.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::run {
@@ -35,6 +36,12 @@ class Experiment {
 
   const std::string& dir() const { return dir_; }
   const ReproduceOptions& options() const { return o_; }
+  // Ends the reproduction with Interrupted once a stop was asked for (between steps).
+  void checkStop(const std::string& dir) const {
+    if (o_.stop != nullptr && o_.stop->load()) {
+      throw Interrupted("interrupted; run the same command again to continue", dir);
+    }
+  }
   // Compute time of the experiment's steps, whether they ran now or in an earlier invocation:
   // the GP runs' generation times and the assessments' recorded times.
   double evolveSeconds() const { return evolveSeconds_; }
@@ -53,6 +60,8 @@ class Experiment {
                                               const std::string& name) {
     if (const auto done = histories_.find(name); done != histories_.end()) return done->second;
     const std::string dir = dir_ + "/" + name;
+    checkStop(dir);
+    const DirectoryLock lock(dir, "results directory");  // Also against a `gpfd evolve --resume`.
     DiscoveryOptions d;
     d.outDir = dir;
     d.threads = o_.threads;
@@ -69,8 +78,7 @@ class Experiment {
           }
         },
         o_.stop ? *o_.stop : never);
-    if (!run->finished())
-      throw InputError("interrupted; run the same command again to continue", dir);
+    checkStop(dir);
     for (const auto& r : run->history()) evolveSeconds_ += r.seconds;
     validationSeconds_ += run->validation().seconds;
     outcomes_[name] = outcomeOf(*run, 1);
@@ -114,6 +122,7 @@ class Experiment {
   void assess(const LearningTask& task, const std::vector<FeatureSet>& sets,
               const std::string& name, const std::string& title) {
     const std::string dir = dir_ + "/" + name;
+    checkStop(dir);
     if (fs::exists(dir + "/summary.csv")) {
       if (fs::exists(dir + "/seconds.txt"))
         assessSeconds_ += std::stod(readFile(dir + "/seconds.txt"));
@@ -490,7 +499,7 @@ void reproduce(const std::vector<std::string>& figures, const ReproduceOptions& 
       throw InputError("unknown figure '" + f + "' (fig1, fig3, fig5, fig6, fig7 or all)", f);
     }
   }
-  createDirectories(o.outDir);
+  const DirectoryLock lock(o.outDir);
   for (const auto& figure : figures) {
     if (!o.quiet) {
       fmt::print("{}:\n", figure);
@@ -505,6 +514,7 @@ void reproduce(const std::vector<std::string>& figures, const ReproduceOptions& 
                     o.paperScale ? "paper" : "quick", o.seed, o.version, o.revision,
                     o.threads > 0 ? std::to_string(o.threads) : "all"));
     writeFileAtomically(e.dir() + "/section.json", part.json());
+    e.checkStop(e.dir());
   }
 
   // The report covers every figure whose section exists in the output directory.

@@ -40,6 +40,7 @@ void writeFileAtomically(const std::string& path, const std::string& contents) {
 }
 
 std::string readFile(const std::string& path) {
+  if (std::filesystem::is_directory(path)) throw InputError("a directory, not a file", path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(std::string("cannot read: ") + std::strerror(errno), path);
   std::ostringstream out;

@@ -74,7 +74,9 @@ TEST(Simulate, ReplayingTheActionsFromTheInitialStateGivesTheSameCsv) {
     for (std::size_t i = 1; field(row0, i).empty(); ++i) ++actionCount;
     std::string state, actions;
     for (std::size_t i = 1 + actionCount; field(header, i) != "reward"; ++i) {
-      state += (state.empty() ? "" : ",") + field(rows[1], i);
+      // Not ("" or ",") + field(...): GCC 12 -O3 reports a false -Wrestrict on that.
+      if (!state.empty()) state += ',';
+      state += field(rows[1], i);
     }
     for (std::size_t r = 2; r < rows.size(); ++r) {
       for (std::size_t i = 1; i <= actionCount; ++i) {

@@ -154,8 +154,17 @@ TEST(Export, NumPyFunctionComputesTheSameValues) {
   }
   script += "]\n";
   for (std::size_t i = 0; i < c.genomes.size(); ++i) {
-    script += "for s in states:\n    for v in features" + std::to_string(i) +
-              "(np.array(s)):\n        print(bits(v))\n";
+    const std::string f = "features" + std::to_string(i);
+    const std::string k = std::to_string(c.genomes[i].featureCount());
+    script += "for s in states:\n    for v in " + f + "(np.array(s)):\n        print(bits(v))\n";
+    // One float64 array, for one state and for a batch of states (the same values).
+    script += "one = " + f + "(np.array(states[0]))\n";
+    script += "assert isinstance(one, np.ndarray) and one.dtype == np.float64 and one.shape == (" +
+              k + ",), one\n";
+    script += "batch = " + f + "(np.array(states))\n";
+    script += "assert batch.dtype == np.float64 and batch.shape == (len(states), " + k + ")\n";
+    script += "assert (batch.view(np.uint64) == np.array([" + f +
+              "(np.array(s)) for s in states]).view(np.uint64)).all()\n";
   }
   std::ofstream(dir + "/exported.py") << script;
   const auto out = run("/usr/bin/python3 " + dir + "/exported.py 2>&1", status);

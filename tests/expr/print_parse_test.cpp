@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include "gpfd/expr/parse.hpp"
 #include "gpfd/expr/print.hpp"
 #include "gpfd/util/error.hpp"
@@ -80,6 +82,60 @@ TEST(Parse, MalformedInputNamesTheErrorAndPlace) {
   expectError("(+ th1 x[7])", "out of range", 8, true);
   expectError("(+ th1", "expected ')'", 7, true);
   expectError("", "empty", 1, true);
+}
+
+// "x op x op ... op x" with `terms` terms.
+std::string flatChain(int terms, char op) {
+  std::string text = "x";
+  text.reserve(2 * static_cast<std::size_t>(terms));
+  for (int i = 1; i < terms; ++i) (text += op) += 'x';
+  return text;
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The input: 200,000 terms (400 KB) took 145 s before failing, as the parser copied the
+// left tree at every operator and checked the limits only on the finished tree. The time bounds
+// below are 1000 times what the parser takes, to catch that regression on a loaded machine.
+TEST(Parse, LongFlatChainStopsAtTheFirstLimitCrossed) {
+  const VariableNames names{"x"};
+  for (char op : {'+', '-', '*', '/'}) {
+    const std::string text = flatChain(200000, op);
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      parseInfix(text, names, {"f", 1});
+      FAIL() << "accepted a 200,000-term chain";
+    } catch (const InputError& e) {
+      // The 64th operator makes the tree 65 deep: the error is there, at column 128.
+      EXPECT_EQ(std::string(e.what()), "too deep: depth exceeds the limit of 64");
+      EXPECT_EQ(e.where(), "f:1:128");
+    }
+    EXPECT_LT(secondsSince(start), 1.0) << op;
+  }
+  // The size limit, too, stops the parse where it is crossed.
+  try {
+    parseInfix(flatChain(200000, '+'), names, {"f", 1}, 1 << 20, 1000);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "too large: more than the limit of 1000 nodes");
+    EXPECT_EQ(e.where(), "f:1:1000");  // The 500th operator: node 1001.
+  }
+}
+
+TEST(Parse, FlatChainsParseInLinearTime) {
+  // With limits that admit it, the 200,000-term chain parses (quadratic: minutes).
+  const VariableNames names{"x"};
+  const auto start = std::chrono::steady_clock::now();
+  const Tree tree = parseInfix(flatChain(200000, '-'), names, {}, 1 << 20, 1 << 20);
+  EXPECT_LT(secondsSince(start), 5.0);
+  ASSERT_EQ(tree.size(), 399999u);
+  EXPECT_EQ(tree[0].op, Op::Sub);
+  EXPECT_EQ(tree[0].length, 399999u);
+  EXPECT_EQ(tree[1].length, 399997u);  // Left-associative: ((x - x) - x) - ...
+  EXPECT_EQ(tree[199999].op, Op::Var);
+  EXPECT_EQ(toInfix(parseInfix("x - x - (x - x)", names), names), "x - x - (x - x)");
 }
 
 TEST(Parse, ErrorsCountLinesFromThePlace) {

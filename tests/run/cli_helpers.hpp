@@ -18,14 +18,51 @@ struct CommandResult {
   std::string output;
 };
 
-inline CommandResult runGpfd(const std::string& args) {
+// Runs gpfd with `args` in the working directory `cwd` (default: the test's).
+inline CommandResult runGpfd(const std::string& args, const std::string& cwd = "") {
   CommandResult r;
-  FILE* pipe = popen((std::string(GPFD_BINARY) + " " + args + " 2>&1").c_str(), "r");
+  const std::string cd = cwd.empty() ? "" : "cd '" + cwd + "' && ";
+  FILE* pipe = popen((cd + GPFD_BINARY + " " + args + " 2>&1").c_str(), "r");
   char buffer[4096];
   while (std::fgets(buffer, sizeof buffer, pipe)) r.output += buffer;
   const int status = pclose(pipe);
   r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+// A gpfd process running in the background (its own pid: sh execs it), output to a file.
+struct Background {
+  pid_t pid = -1;
+  std::string outputFile;
+
+  // Waits for the process; its exit code, or 128 + the signal that ended it.
+  int wait() const {
+    int status = 0;
+    waitpid(pid, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  }
+};
+
+inline Background startGpfd(const std::string& args, const std::string& outputFile) {
+  Background b{-1, outputFile};
+  b.pid = fork();
+  if (b.pid == 0) {
+    execl(
+        "/bin/sh", "sh", "-c",
+        ("exec " + std::string(GPFD_BINARY) + " " + args + " > '" + outputFile + "' 2>&1").c_str(),
+        static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  return b;
+}
+
+// Waits until `path` exists (true) or `seconds` passed (false).
+inline bool waitForFile(const std::string& path, double seconds = 60) {
+  for (int i = 0; i < seconds * 100; ++i) {
+    if (std::filesystem::exists(path)) return true;
+    usleep(10000);
+  }
+  return false;
 }
 
 inline std::string readText(const std::string& path) {

@@ -48,7 +48,8 @@ std::string emitTree(const gpfd::expr::Tree& tree, std::ostream& out) {
   std::vector<std::string> stack;
   for (std::size_t i = tree.size(); i-- > 0;) {
     const auto& node = tree[i];
-    const std::string name = "v" + std::to_string(i);
+    // Not "v" + std::to_string(i): GCC 12 -O3 reports a false -Wrestrict on that.
+    const std::string name = std::string("v").append(std::to_string(i));
     std::string value;
     if (node.op == Op::Const) {
       value = literal(node.value);

@@ -34,7 +34,8 @@ struct SimulationRequest {
 // row per step with the action as applied (continuous components clipped to the bounds), the
 // state after it, the reward and the flags as 0/1. Numbers in shortest round-trip form. Throws
 // InputError, before any output exists, on an unknown environment or parameter, a wrong number of
-// state or action components, or an illegal action.
+// state or action components, or an illegal action; NumericalError when a step makes the state
+// or the reward non-finite.
 std::string simulateCsv(const SimulationRequest& request);
 
 // "v1,v2,..." -> finite numbers; InputError(where) on an empty field or a non-number.

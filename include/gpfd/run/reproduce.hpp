@@ -52,7 +52,8 @@ struct ReproduceOptions {
 inline const std::vector<std::string> kFigures{"fig1", "fig3", "fig5", "fig6", "fig7"};
 
 // Runs the given figures (a subset of kFigures) and writes OUT/report.md and OUT/report.html
-// covering every figure present in OUT. InputError for an unknown figure name.
+// covering every figure present in OUT. InputError for an unknown figure name or when another
+// process writes into OUT; Interrupted when `stop` was set (after the step that was running).
 void reproduce(const std::vector<std::string>& figures, const ReproduceOptions& options);
 
 }  // namespace gpfd::run
