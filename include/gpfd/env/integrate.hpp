@@ -4,16 +4,16 @@
 #include <array>
 #include <cstddef>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace gpfd::env {
 
 enum class Integrator { Euler, Rk4 };
 
-inline const char* integratorName(Integrator integrator) {
-  return integrator == Integrator::Euler ? "euler" : "rk4";
-}
-inline Integrator integratorFromName(const std::string& name) {
-  return name == "euler" ? Integrator::Euler : Integrator::Rk4;
+// The names of the integrators, for parameter tables.
+inline std::vector<std::pair<std::string, Integrator>> integratorNames() {
+  return {{"euler", Integrator::Euler}, {"rk4", Integrator::Rk4}};
 }
 
 template <std::size_t N>
