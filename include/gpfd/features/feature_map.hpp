@@ -1,0 +1,55 @@
+// features: the interface through which learners see states, and the trivial maps. Compiled
+// genomes (jit) and generic bases (rl's Fourier basis) implement it; learners depend only on it.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+namespace gpfd::features {
+
+// Maps a state of inputDim() values to outputDim() features. Contract: evaluate() is const and
+// safe to call from several threads at once; it reads only state[0, inputDim()) and writes only
+// features[0, outputDim()).
+class FeatureMap {
+ public:
+  virtual ~FeatureMap() = default;
+  virtual std::size_t inputDim() const = 0;
+  virtual std::size_t outputDim() const = 0;
+  virtual void evaluate(const double* state, double* features) const = 0;
+  // n states laid out one after another (n * inputDim() values) to n feature rows
+  // (n * outputDim() values). The default calls evaluate() per state.
+  virtual void evaluateBatch(const double* states, std::size_t n, double* out) const;
+  // Whether the features are the state variables themselves, in order (RawFeatureMap): a learner
+  // may then start from weights known for the state (AfterstateGame::knownValueWeights).
+  virtual bool isIdentity() const { return false; }
+};
+
+// The raw state variables as features (the identity).
+class RawFeatureMap final : public FeatureMap {
+ public:
+  explicit RawFeatureMap(std::size_t dim) : dim_(dim) {}
+  std::size_t inputDim() const override { return dim_; }
+  std::size_t outputDim() const override { return dim_; }
+  void evaluate(const double* state, double* features) const override;
+  bool isIdentity() const override { return true; }
+
+ private:
+  std::size_t dim_;
+};
+
+// The outputs of several maps over the same state, side by side (e.g. discovered + original).
+class ConcatFeatureMap final : public FeatureMap {
+ public:
+  explicit ConcatFeatureMap(std::vector<std::shared_ptr<const FeatureMap>> parts);
+  std::size_t inputDim() const override { return inputDim_; }
+  std::size_t outputDim() const override { return outputDim_; }
+  void evaluate(const double* state, double* features) const override;
+
+ private:
+  std::vector<std::shared_ptr<const FeatureMap>> parts_;
+  std::size_t inputDim_ = 0;
+  std::size_t outputDim_ = 0;
+};
+
+}  // namespace gpfd::features

@@ -1,0 +1,73 @@
+#include <fmt/format.h>
+
+#include "gpfd/rl/lambda_policy_iteration.hpp"
+#include "gpfd/rl/learner.hpp"
+#include "gpfd/rl/policy_gradient.hpp"
+#include "gpfd/util/error.hpp"
+
+namespace gpfd::rl {
+namespace {
+
+// The built-in learners: one line each.
+void addBuiltIns(LearnerRegistry& registry) {
+  registry.add(policyGradientLearner());
+  registry.add(lambdaPolicyIterationLearner());
+}
+
+}  // namespace
+
+LearnerRegistry& LearnerRegistry::global() {
+  static LearnerRegistry registry = [] {
+    LearnerRegistry r;
+    addBuiltIns(r);
+    return r;
+  }();
+  return registry;
+}
+
+void LearnerRegistry::add(LearnerInfo info) {
+  if (info.name.empty() || !info.make || !info.unsuitable || info.budgetParam.empty()) {
+    throw InputError(
+        "a learner needs a name, a factory, a suitability check and a budget parameter",
+        "learner registry");
+  }
+  if (entries_.count(info.name)) {
+    throw InputError(fmt::format("a learner named '{}' is already registered", info.name),
+                     "learner registry");
+  }
+  std::string name = info.name;
+  entries_.emplace(std::move(name), std::move(info));
+}
+
+const LearnerInfo& LearnerRegistry::info(const std::string& name) const {
+  const auto it = entries_.find(name);
+  if (it == entries_.end()) {
+    throw InputError(
+        fmt::format("unknown learner '{}' (known: {})", name, fmt::join(names(), ", ")), "learner");
+  }
+  return it->second;
+}
+
+std::vector<std::string> LearnerRegistry::names() const {
+  std::vector<std::string> out;
+  for (const auto& [name, info] : entries_) out.push_back(name);
+  return out;
+}
+
+std::unique_ptr<Learner> LearnerRegistry::make(const std::string& name,
+                                               const Params& params) const {
+  const LearnerInfo& entry = info(name);
+  checkParamNames(name, paramNames(entry.params), params);
+  return entry.make(params);
+}
+
+void LearnerRegistry::checkSuitable(const std::string& name, env::Environment& env) const {
+  const std::string why = info(name).unsuitable(env);
+  if (!why.empty()) {
+    throw InputError(fmt::format("learner {} cannot learn on {}: {} (it needs {})", name,
+                                 env.name(), why, info(name).needs),
+                     "learner " + name);
+  }
+}
+
+}  // namespace gpfd::rl
