@@ -6,7 +6,7 @@
 #include "gpfd/env/environment.hpp"
 #include "gpfd/io/suggest.hpp"
 #include "gpfd/io/toml_fields.hpp"
-#include "gpfd/rl/learner_params.hpp"
+#include "gpfd/rl/learner.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
 
@@ -24,7 +24,7 @@ void visit(V& v, ExperimentConfig& c) {
   v.seed("", "seed", c.seed);
   v.text("env", "name", c.env);
   v.params("env.params", c.envParams);
-  v.text("learner", "name", c.learner, {"pg", "lpi"});
+  v.text("learner", "name", c.learner);
   v.params("learner.params", c.learnerParams);
   v.integer("fitness", "trials", c.trials, 1, 1000);
   v.measure("fitness", "measure", c.measure);
@@ -111,34 +111,35 @@ std::string plainPlace(const std::string& section, const std::string& key) {
   return section.empty() ? key : section + "." + key;
 }
 
-bool applyLearnerParam(const std::string& learner, const std::string& key,
-                       const std::string& value) {
-  rl::PolicyGradientConfig pg;
-  rl::LambdaPolicyIterationConfig lpi;
-  return learner == "pg" ? rl::applyPolicyGradientParam(pg, key, value)
-                         : rl::applyLambdaPolicyIterationParam(lpi, key, value);
-}
-
-std::vector<std::string> learnerParamNames(const std::string& learner) {
-  std::vector<std::string> names;
-  for (const auto& spec :
-       learner == "pg" ? rl::policyGradientParamSpecs() : rl::lambdaPolicyIterationParamSpecs()) {
-    names.push_back(spec.name);
-  }
-  return names;
-}
-
-void checkLearnerParams(const ExperimentConfig& c, const std::string& section,
-                        const std::map<std::string, std::string>& params, const Place& place) {
+// Refuses a key of `params` that is not one of `names` (the parameters of `owner`), with a
+// suggestion, at the key's place in `section`.
+void requireKnown(const Params& params, const std::vector<std::string>& names,
+                  const std::string& owner, const std::string& section, const Place& place) {
   for (const auto& [key, value] : params) {
-    try {
-      require(applyLearnerParam(c.learner, key, value),
-              "unknown parameter '" + key + "' of learner " + c.learner +
-                  io::didYouMean(key, learnerParamNames(c.learner)),
-              place(section, key));
-    } catch (const InputError& e) {
-      throw InputError(e.what(), place(section, key));
+    require(std::find(names.begin(), names.end(), key) != names.end(),
+            "unknown parameter '" + key + "' of " + owner + io::didYouMean(key, names),
+            place(section, key));
+  }
+}
+
+// Runs `make`. An InputError about parameter "<owner>.<key>" (as parameter tables name them) is
+// moved to the place of that key in the first of `sections` that sets it, any other to
+// `fallback`.
+template <typename Make>
+auto makeAt(const Make& make, const std::string& owner,
+            const std::vector<std::pair<std::string, const Params*>>& sections,
+            const std::string& fallback, const Place& place) {
+  try {
+    return make();
+  } catch (const InputError& e) {
+    const std::string prefix = owner + ".";
+    if (e.where().starts_with(prefix)) {
+      const std::string key = e.where().substr(prefix.size());
+      for (const auto& [section, params] : sections) {
+        if (params->count(key)) throw InputError(e.what(), place(section, key));
+      }
     }
+    throw InputError(e.what(), fallback);
   }
 }
 
@@ -148,22 +149,31 @@ void validateAt(const ExperimentConfig& c, const Place& place) {
   require(std::find(envs.begin(), envs.end(), c.env) != envs.end(),
           "unknown environment '" + c.env + "'" + io::didYouMean(c.env, envs),
           place("env", "name"));
-  std::vector<std::string> envParamNames;
-  for (const auto& spec : registry.info(c.env).params) envParamNames.push_back(spec.name);
-  for (const auto& [key, value] : c.envParams) {
-    require(std::find(envParamNames.begin(), envParamNames.end(), key) != envParamNames.end(),
-            "unknown parameter '" + key + "' of environment " + c.env +
-                io::didYouMean(key, envParamNames),
-            place("env.params", key));
-    try {
-      registry.make(c.env, {{key, value}});
-    } catch (const InputError& e) {
-      throw InputError(e.what(), place("env.params", key));
-    }
+  requireKnown(c.envParams, paramNames(registry.info(c.env).params), "environment " + c.env,
+               "env.params", place);
+  const auto environment = makeAt([&] { return registry.make(c.env, c.envParams); }, c.env,
+                                  {{"env.params", &c.envParams}}, place("env", "name"), place);
+
+  const auto& learners = rl::LearnerRegistry::global();
+  const auto learnerNames = learners.names();
+  require(std::find(learnerNames.begin(), learnerNames.end(), c.learner) != learnerNames.end(),
+          "unknown learner '" + c.learner + "'" + io::didYouMean(c.learner, learnerNames),
+          place("learner", "name"));
+  try {
+    learners.checkSuitable(c.learner, *environment);
+  } catch (const InputError& e) {
+    throw InputError(e.what(), place("learner", "name"));
   }
-  registry.make(c.env, c.envParams);  // Parameters that are only wrong together.
-  checkLearnerParams(c, "learner.params", c.learnerParams, place);
-  checkLearnerParams(c, "assess.params", c.assessParams, place);
+  const auto learnerParamNames = paramNames(learners.info(c.learner).params);
+  requireKnown(c.learnerParams, learnerParamNames, "learner " + c.learner, "learner.params", place);
+  requireKnown(c.assessParams, learnerParamNames, "learner " + c.learner, "assess.params", place);
+  makeAt([&] { return learners.make(c.learner, c.learnerParams); }, c.learner,
+         {{"learner.params", &c.learnerParams}}, place("learner", "name"), place);
+  Params assessment = c.learnerParams;  // As LearningTask's assessment budget sees them.
+  for (const auto& [key, value] : c.assessParams) assessment[key] = value;
+  makeAt([&] { return learners.make(c.learner, assessment); }, c.learner,
+         {{"assess.params", &c.assessParams}, {"learner.params", &c.learnerParams}},
+         place("learner", "name"), place);
   try {
     expr::PrimitiveSet::named(c.primitives);
   } catch (const InputError& e) {

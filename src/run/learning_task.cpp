@@ -3,13 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "gpfd/env/tetris.hpp"
 #include "gpfd/jit/compiled_feature_map.hpp"
-#include "gpfd/rl/lambda_policy_iteration.hpp"
-#include "gpfd/rl/learner_params.hpp"
-#include "gpfd/rl/policy_gradient.hpp"
-#include "gpfd/rl/tetris_afterstates.hpp"
-#include "gpfd/util/error.hpp"
 
 namespace gpfd::run {
 namespace {
@@ -23,25 +17,15 @@ LearningTask::LearningTask(const ExperimentConfig& config, Budget budget)
   if (budget == Budget::Assessment) {
     for (const auto& [k, v] : config.assessParams) learnerParams_[k] = v;
   }
-  stateNames_ = env::Registry::global().make(config_.env, config_.envParams)->stateNames();
+  const auto environment = env::Registry::global().make(config_.env, config_.envParams);
+  stateNames_ = environment->stateNames();
+  rl::LearnerRegistry::global().checkSuitable(config_.learner, *environment);
+  learner_ = rl::LearnerRegistry::global().make(config_.learner, learnerParams_);
 }
 
-rl::LearningCurve LearningTask::train(const jit::FeatureMap& map, Rng& rng) const {
-  auto environment = env::Registry::global().make(config_.env, config_.envParams);
-  if (config_.learner == "lpi") {
-    auto* tetris = dynamic_cast<env::Tetris*>(environment.get());
-    if (tetris == nullptr) {
-      throw InputError("learner lpi needs an afterstate environment (tetris), not " + config_.env,
-                       "learner.name");
-    }
-    rl::LambdaPolicyIterationConfig lpi;
-    for (const auto& [k, v] : learnerParams_) rl::applyLambdaPolicyIterationParam(lpi, k, v);
-    rl::TetrisAfterstateProblem problem(*tetris);
-    return rl::trainLambdaPolicyIteration(problem, map, lpi, rng);
-  }
-  rl::PolicyGradientConfig pg;
-  for (const auto& [k, v] : learnerParams_) rl::applyPolicyGradientParam(pg, k, v);
-  return rl::trainPolicyGradient(*environment, map, pg, rng);
+rl::LearningCurve LearningTask::train(const features::FeatureMap& map, Rng& rng) const {
+  const auto environment = env::Registry::global().make(config_.env, config_.envParams);
+  return learner_->train(*environment, map, rng);
 }
 
 double LearningTask::score(const rl::LearningCurve& curve) const {
@@ -68,13 +52,14 @@ double LearningTask::score(const rl::LearningCurve& curve) const {
   return std::isfinite(mean) ? mean : kWorst;
 }
 
-std::shared_ptr<const jit::FeatureMap> genomeFeatureMap(const expr::Genome& genome,
-                                                        std::size_t stateDim, bool withOriginal) {
+std::shared_ptr<const features::FeatureMap> genomeFeatureMap(const expr::Genome& genome,
+                                                             std::size_t stateDim,
+                                                             bool withOriginal) {
   auto compiled = std::make_shared<const jit::CompiledFeatureMap>(genome, stateDim);
   if (!withOriginal) return compiled;
-  return std::make_shared<const jit::ConcatFeatureMap>(
-      std::vector<std::shared_ptr<const jit::FeatureMap>>{
-          compiled, std::make_shared<const jit::RawFeatureMap>(stateDim)});
+  return std::make_shared<const features::ConcatFeatureMap>(
+      std::vector<std::shared_ptr<const features::FeatureMap>>{
+          compiled, std::make_shared<const features::RawFeatureMap>(stateDim)});
 }
 
 double trialFitness(const LearningTask& task, const expr::Genome& genome, Rng& rng) {

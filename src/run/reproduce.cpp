@@ -14,6 +14,7 @@
 #include "gpfd/run/discovery.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
+#include "gpfd/util/number.hpp"
 
 namespace gpfd::run {
 namespace {
@@ -78,7 +79,7 @@ class Experiment {
     const std::string dir = dir_ + "/" + name;
     if (fs::exists(dir + "/summary.csv")) {
       if (fs::exists(dir + "/seconds.txt"))
-        assessSeconds_ += std::stod(readFile(dir + "/seconds.txt"));
+        assessSeconds_ += parseNumber(readFile(dir + "/seconds.txt"), dir + "/seconds.txt");
       return;
     }
     const auto start = std::chrono::steady_clock::now();
@@ -90,7 +91,7 @@ class Experiment {
         runAssessment(task, sets, task.config().assessRuns, task.config().seed, o_.threads);
     createDirectories(dir);
     writeAssessment(dir, result, summarizeAssessment(result, 0), title,
-                    task.config().learner == "lpi" ? "lambda-PI iteration" : "policy update");
+                    rl::LearnerRegistry::global().info(task.config().learner).rowName);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     writeFileAtomically(dir + "/seconds.txt", fmt::format("{:.1f}\n", seconds));
@@ -169,7 +170,7 @@ io::Report benchmark(Experiment& e, const ExperimentConfig& config, const std::s
   const LearningTask task(config, LearningTask::Budget::Assessment);
   const auto features = e.discovered(evolveName, task);
   const FeatureSet original{"original",
-                            std::make_shared<const jit::RawFeatureMap>(task.stateDim())};
+                            std::make_shared<const features::RawFeatureMap>(task.stateDim())};
   std::vector<FeatureSet> sets{original};
   sets.insert(sets.end(), extraSets.begin(), extraSets.end());
   sets.push_back(
