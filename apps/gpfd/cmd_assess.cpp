@@ -7,9 +7,11 @@
 #include "config_loading.hpp"
 #include "gpfd/env/environment.hpp"
 #include "gpfd/expr/features_file.hpp"
+#include "gpfd/rl/learner.hpp"
 #include "gpfd/run/assessment.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
+#include "listings.hpp"
 #include "param_routing.hpp"
 
 namespace gpfd::app {
@@ -41,16 +43,14 @@ run::ExperimentConfig assessConfig(const AssessOptions& o) {
   } else {
     if (o.env.empty()) throw InputError("give an environment or --config", "gpfd assess");
     config.env = o.env;
-    config.learner = o.env == "tetris" ? "lpi" : "pg";
+    config.learner = env::Registry::global().info(o.env).defaultLearner;
   }
-  const auto& info = env::Registry::global().info(config.env);
-  for (const auto& p : o.params) {
-    const auto [key, value] = splitKeyValue(p, "--param " + p);
-    (isEnvParam(info, key) ? config.envParams : config.assessParams)[key] = value;
-  }
+  const auto routed = routeParams(o.params, env::Registry::global().info(config.env), "--param");
+  for (const auto& [key, value] : routed.env) config.envParams[key] = value;
+  for (const auto& [key, value] : routed.learner) config.assessParams[key] = value;
   if (o.budget > 0) {
-    config.assessParams[config.learner == "lpi" ? "iterations" : "updates"] =
-        std::to_string(o.budget);
+    const auto& learner = rl::LearnerRegistry::global().info(config.learner);
+    config.assessParams[learner.budgetParam] = std::to_string(o.budget);
   }
   if (o.runs > 0) config.assessRuns = o.runs;
   config.seed = o.seed;
@@ -62,7 +62,7 @@ int assess(const AssessOptions& o) {
   const auto config = assessConfig(o);
   const run::LearningTask task(config, run::LearningTask::Budget::Assessment);
   const std::size_t dim = task.stateDim();
-  const auto raw = std::make_shared<const jit::RawFeatureMap>(dim);
+  const auto raw = std::make_shared<const features::RawFeatureMap>(dim);
 
   // Every input is read and checked before anything is written.
   std::vector<run::FeatureSet> sets;
@@ -96,7 +96,7 @@ int assess(const AssessOptions& o) {
   const auto result = run::runAssessment(task, sets, config.assessRuns, config.seed, o.threads);
   const auto summary = run::summarizeAssessment(result, 0);
   run::writeAssessment(out, result, summary, config.env + ": " + config.learner,
-                       config.learner == "lpi" ? "iteration" : "policy update");
+                       rl::LearnerRegistry::global().info(config.learner).rowName);
   if (!o.quiet) {
     for (const auto& row : summary) {
       fmt::print(
@@ -132,9 +132,14 @@ const CommandRegistration registration{
           ->check(CLI::Range(1, 9));
       cmd->add_option("--runs", o->runs, "Independent runs per set (default: the config's, 20)")
           ->check(CLI::PositiveNumber);
-      cmd->add_option("--budget", o->budget, "Policy updates (pg) or iterations (lpi) per run")
+      cmd->add_option("--budget", o->budget,
+                      "The learner's budget per run: sets its budget parameter (gpfd learners)")
           ->check(CLI::PositiveNumber);
       cmd->add_option("--param", o->params, "k=v for the environment or the learner (repeatable)");
+      cmd->footer(
+          "Learner parameters (defaults, ranges and meanings: gpfd learners; the "
+          "environments': gpfd envs):\n" +
+          learnerParamSummary());
       cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str();
       cmd->add_option("--threads", o->threads, "Worker threads (0: all cores)")
           ->check(threadCount());
