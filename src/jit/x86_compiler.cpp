@@ -390,15 +390,10 @@ class Emitter {
         case Op::Var:
           variable(v, in.var);
           break;
-        case Op::Sin:
-        case Op::Cos:
-        case Op::Exp:
-        case Op::Log:
-        case Op::Tanh:
-          call(v, in);
-          break;
         default:
-          if (expr::arity(in.op) == 1) {
+          if (expr::isCall(in.op)) {
+            call(v, in);
+          } else if (expr::arity(in.op) == 1) {
             unary(v, in);
           } else {
             binary(v, in);
