@@ -1,24 +1,16 @@
 // `gpfd reproduce`: the paper's experiments, figures and report in one command.
 #include <fmt/format.h>
 
-#include <csignal>
-#include <cstdlib>
-#include <filesystem>
-
+#include "bench_jit.hpp"
 #include "command.hpp"
 #include "config_loading.hpp"
 #include "gpfd/run/reproduce.hpp"
 #include "gpfd/util/error.hpp"
 #include "gpfd/version.hpp"
+#include "interrupt.hpp"
 
 namespace gpfd::app {
 namespace {
-
-std::atomic<bool> stopRequested{false};
-extern "C" void onReproduceInterrupt(int) {
-  stopRequested.store(true);
-  std::signal(SIGINT, SIG_DFL);
-}
 
 struct ReproduceCli {
   std::vector<std::string> figures{"all"};
@@ -30,14 +22,16 @@ struct ReproduceCli {
   bool skipFourier = false;
 };
 
-// Runs this same program's `bench jit` (its AOT reference lives in the tool).
+// The JIT benchmark of Figure 3, smaller when `quick`.
 void benchJit(const std::string& dir, bool quick) {
-  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
-  const std::string command = fmt::format("'{}' bench jit --out '{}' {} > '{}.log' 2>&1", self, dir,
-                                          quick ? "--calls 200000 --runs 3" : "", dir);
-  if (std::system(command.c_str()) != 0 || !std::filesystem::exists(dir + "/jit.csv")) {
-    throw InputError("gpfd bench jit failed; see " + dir + ".log", dir);
+  BenchJitArgs args;
+  args.out = dir;
+  args.print = false;
+  if (quick) {
+    args.calls = 200000;
+    args.runs = 3;
   }
+  runBenchJit(args);
 }
 
 int reproduceCommand(const ReproduceCli& c) {
@@ -50,7 +44,7 @@ int reproduceCommand(const ReproduceCli& c) {
   o.revision = kRevision;
   o.quiet = c.quiet;
   o.skipFourier = c.skipFourier;
-  o.stop = &stopRequested;
+
   o.loadConfig = [](const std::string& name, const std::vector<std::string>& overrides) {
     return loadConfig(name, overrides);
   };
@@ -63,7 +57,7 @@ int reproduceCommand(const ReproduceCli& c) {
       figures.push_back(f);
     }
   }
-  std::signal(SIGINT, onReproduceInterrupt);
+  o.stop = &stopOnInterrupt();
   run::reproduce(figures, o);
   return 0;
 }
