@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <csignal>
 #include <filesystem>
 #include <optional>
 #include <thread>
@@ -13,6 +12,7 @@
 #include "gpfd/run/discovery.hpp"
 #include "gpfd/util/error.hpp"
 #include "gpfd/version.hpp"
+#include "interrupt.hpp"
 
 #ifdef GPFD_HAVE_MPI
 #include "gpfd/mpi/mpi_evaluator.hpp"
@@ -21,13 +21,6 @@
 
 namespace gpfd::app {
 namespace {
-
-std::atomic<bool> interrupted{false};
-
-extern "C" void onInterrupt(int) {
-  interrupted.store(true);
-  std::signal(SIGINT, SIG_DFL);  // A second Ctrl-C ends the process at once.
-}
 
 struct EvolveOptions {
   std::string config;
@@ -114,7 +107,7 @@ int evolve(const EvolveOptions& o) {
         config.seed, options.outDir);
     std::fflush(stdout);
   }
-  std::signal(SIGINT, onInterrupt);
+  const std::atomic<bool>& interrupted = stopOnInterrupt();
 
   // On a terminal, a status line shows the evaluations of the running generation.
   std::atomic<bool> running{true};
