@@ -15,6 +15,7 @@
 #include "gpfd/io/gnuplot.hpp"
 #include "gpfd/jit/aot_reference.hpp"
 #include "gpfd/jit/figure3.hpp"
+#include "gpfd/jit/x86_compiler.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
 
@@ -153,6 +154,12 @@ std::string summary(const Table& t, const jit::Figure3Options& o, const jit::Mem
 }  // namespace
 
 void runBenchJit(const BenchJitArgs& args) {
+  if (!jit::jitAvailable()) {
+    throw InputError(
+        "the JIT benchmark needs the JIT, which this build lacks (GPFD_WITH_JIT=OFF "
+        "or not x86-64)",
+        "gpfd bench jit");
+  }
   jit::Figure3Options options;
   parseDepths(args.depths, options);
   if (args.calls < 1) throw InputError("calls must be positive", "--calls");

@@ -732,15 +732,12 @@ bool jitUsesDualMapping() { return runtime().dualMapping; }
 NativeCode compileScalar(const Program& program) { return compile(program, false); }
 NativeCode compileBatch(const Program& program) { return compile(program, true); }
 
-#else  // No JIT in this build.
+#else  // No JIT in this build (GPFD_WITH_JIT=OFF, or not x86-64): the interpreter runs everything.
 
 NativeCode::~NativeCode() = default;
 bool jitAvailable() { return false; }
-bool hostHasAvx() {
-  static const bool has = asmjit::CpuInfo::host().hasFeature(asmjit::CpuFeatures::X86::kAVX);
-  return has;
-}
-
+// Without the JIT nothing runs AVX code, so the host's features do not matter.
+bool hostHasAvx() { return false; }
 bool hostHasAvx2() { return false; }
 bool jitUsesDualMapping() { return false; }
 NativeCode compileScalar(const Program&) { throw CompileError("built without the JIT"); }
