@@ -1,12 +1,14 @@
 #include "gpfd/run/experiment_config.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <functional>
 
 #include "gpfd/env/environment.hpp"
 #include "gpfd/io/suggest.hpp"
 #include "gpfd/io/toml_fields.hpp"
 #include "gpfd/rl/learner.hpp"
+#include "gpfd/run/plugin.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
 
@@ -22,6 +24,7 @@ template <typename V>
 void visit(V& v, ExperimentConfig& c) {
   v.text("", "name", c.name);
   v.seed("", "seed", c.seed);
+  v.texts("", "plugins", c.plugins);
   v.text("env", "name", c.env);
   v.params("env.params", c.envParams);
   v.text("learner", "name", c.learner);
@@ -68,6 +71,7 @@ struct Reader {
     r.read(s, k, out, lo, hi);
   }
   void reals(const char* s, const char* k, std::vector<double>& out) { r.read(s, k, out); }
+  void texts(const char* s, const char* k, std::vector<std::string>& out) { r.read(s, k, out); }
   void boolean(const char* s, const char* k, bool& out) { r.read(s, k, out); }
   void params(const char* s, std::map<std::string, std::string>& out) { r.readParams(s, out); }
   void measure(const char* s, const char* k, TrialMeasure& out) {
@@ -91,6 +95,9 @@ struct Writer {
   }
   void real(const char* s, const char* k, double& v, double, double) { w.write(s, k, v); }
   void reals(const char* s, const char* k, std::vector<double>& v) { w.write(s, k, v); }
+  void texts(const char* s, const char* k, std::vector<std::string>& v) {
+    if (!v.empty()) w.write(s, k, v);  // Configs without plug-ins keep their text.
+  }
   void boolean(const char* s, const char* k, bool& v) { w.write(s, k, v); }
   void params(const char* s, std::map<std::string, std::string>& v) { w.writeParams(s, v); }
   void measure(const char* s, const char* k, TrialMeasure& v) { w.write(s, k, measureName(v)); }
@@ -144,6 +151,13 @@ auto makeAt(const Make& make, const std::string& owner,
 }
 
 void validateAt(const ExperimentConfig& c, const Place& place) {
+  for (const auto& plugin : c.plugins) {
+    try {
+      loadPlugin(plugin);
+    } catch (const InputError& e) {
+      throw InputError(e.what() + (" (" + e.where() + ")"), place("", "plugins"));
+    }
+  }
   const auto& registry = env::Registry::global();
   const auto envs = registry.names();
   require(std::find(envs.begin(), envs.end(), c.env) != envs.end(),
@@ -199,6 +213,12 @@ ExperimentConfig parseExperimentConfig(const std::string& text, const std::strin
   Reader visitor{reader};
   visit(visitor, config);
   reader.finish();
+  // Plug-in paths relative to the config file's directory, stored absolute (for resumes).
+  const std::filesystem::path base =
+      std::filesystem::is_regular_file(source) ? std::filesystem::path(source).parent_path() : "";
+  for (auto& plugin : config.plugins) {
+    plugin = std::filesystem::absolute(base / plugin).lexically_normal().string();
+  }
   validateAt(config, [&reader](const std::string& section, const std::string& key) {
     return reader.where(section, key);
   });

@@ -22,6 +22,9 @@ enum class TrialMeasure {
 struct ExperimentConfig {
   std::string name = "cartpole";
   std::uint64_t seed = 1;
+  // Plug-ins to load before anything else is checked (run/plugin.hpp); a relative path is taken
+  // from the config file's directory, and stored absolute.
+  std::vector<std::string> plugins;
 
   std::string env = "cartpole";
   std::map<std::string, std::string> envParams;
