@@ -55,7 +55,8 @@ const ParamTable<AcrobotConfig>& AcrobotConfig::table() {
           .rule(
               "dt",
               [](const AcrobotConfig& c) {
-                return c.dt / c.substeps <= (c.integrator == Integrator::Rk4 ? 0.2 : 0.05);
+                return c.dt / c.substeps <=
+                       (c.integrator == Integrator::Rk4 ? 0.2 : 0.05) * (1 + 1e-12);
               },
               "the integration step dt / substeps must be at most 0.2 s with rk4 (Gymnasium's "
               "step) and 0.05 s with euler (Sutton & Barto's)");

@@ -46,7 +46,7 @@ const ParamTable<CartPoleConfig>& CartPoleConfig::table() {
               "time limit in steps (truncation); 0 = none")
           // The pole's time scale is sqrt(l / g) ~ 0.2 s: longer steps no longer follow it.
           .rule(
-              "dt", [](const CartPoleConfig& c) { return c.dt / c.substeps <= 0.05; },
+              "dt", [](const CartPoleConfig& c) { return c.dt / c.substeps <= 0.05 * (1 + 1e-12); },
               "the integration step dt / substeps must be at most 0.05 s (Gymnasium's: 0.02 s)");
   return table;
 }

@@ -39,20 +39,22 @@ const ParamTable<SwimmerConfig>& SwimmerConfig::table() {
               "start_angle_noise", [](auto& c) -> auto& { return c.startAngleNoise; }, 0.0,
               3.141592653589793, "reset: at rest, each th_i ~ U(-a, a) (a = this value)")
           // The explicit integrators follow the dynamics only while the step resolves the fastest
-          // mode, which speeds up with the number of segments and the viscosity. The bound is
-          // empirical: random-torque runs (gpfd simulate swimmer --policy random) stay bounded
-          // within it and blow up at about twice it (e.g. euler, h = 0.01 s, k = 10: up to about
-          // 85 segments; 5 segments: up to h = 0.05 s).
+          // mode, which speeds up with the number of segments and the viscosity; without drag
+          // nothing damps the energy that explicit Euler adds. The bounds are empirical, about
+          // half of where random-torque runs blow up (docs/environments.md, "Swimmer
+          // integration").
           .rule(
               "substeps",
               [](const SwimmerConfig& c) {
                 const double stiffness = c.segments * std::max(1.0, c.viscosity / 10.0);
-                return c.dt / c.substeps * stiffness <=
-                       (c.integrator == Integrator::Euler ? 0.4 : 0.6);
+                const double bound = c.integrator == Integrator::Rk4 ? 0.3
+                                     : c.viscosity >= 1.0            ? 0.2
+                                                                     : 0.05;
+                return c.dt / c.substeps * stiffness <= bound * (1 + 1e-12);  // Rounding.
               },
               "the integration step h = dt / substeps is too long for this swimmer: h * segments "
-              "* max(1, viscosity / 10) must be at most 0.4 with euler and 0.6 with rk4 (raise "
-              "substeps)");
+              "* max(1, viscosity / 10) must be at most 0.2 with euler (0.05 below viscosity 1) "
+              "and 0.3 with rk4; raise substeps");
   return table;
 }
 

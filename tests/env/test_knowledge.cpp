@@ -41,12 +41,18 @@ TEST(EnvParams, TheIntegrationStepIsBoundedTogetherWithWhatSetsIt) {
   // Cart-pole: 0.05 s.
   EXPECT_NE(refusal("cartpole", {{"dt", "0.1"}}), "accepted");
   EXPECT_EQ(refusal("cartpole", {{"dt", "0.1"}, {"substeps", "2"}}), "accepted");
-  // Swimmer: h * segments * max(1, viscosity / 10) <= 0.4 (euler), 0.6 (rk4).
-  EXPECT_NE(refusal("swimmer", {{"segments", "50"}}).find("(swimmer.substeps)"), std::string::npos);
-  EXPECT_EQ(refusal("swimmer", {{"segments", "50"}, {"substeps", "20"}}), "accepted");
-  EXPECT_EQ(refusal("swimmer", {{"segments", "5"}, {"substeps", "1"}, {"integrator", "rk4"}}),
+  // Swimmer: h * segments * max(1, viscosity / 10) <= 0.2 (euler; 0.05 below viscosity 1), 0.3
+  // (rk4).
+  EXPECT_NE(refusal("swimmer", {{"segments", "30"}}).find("(swimmer.substeps)"), std::string::npos);
+  EXPECT_EQ(refusal("swimmer", {{"segments", "30"}, {"substeps", "20"}}), "accepted");
+  EXPECT_EQ(refusal("swimmer", {{"segments", "3"}, {"substeps", "1"}, {"integrator", "rk4"}}),
             "accepted");
-  EXPECT_NE(refusal("swimmer", {{"viscosity", "100"}, {"segments", "5"}}), "accepted");
+  EXPECT_NE(refusal("swimmer", {{"segments", "4"}, {"substeps", "1"}, {"integrator", "rk4"}}),
+            "accepted");
+  EXPECT_NE(refusal("swimmer", {{"viscosity", "100"}, {"segments", "3"}}), "accepted");
+  EXPECT_NE(refusal("swimmer", {{"viscosity", "0"}, {"segments", "8"}}), "accepted");
+  EXPECT_EQ(refusal("swimmer", {{"viscosity", "0"}, {"segments", "8"}, {"substeps", "20"}}),
+            "accepted");
 }
 
 // At the edge of every accepted range, random actions keep the state finite and within the
@@ -57,9 +63,11 @@ TEST(EnvParams, TheIntegratorsStayFiniteAtTheEdgeOfTheirRanges) {
       {"acrobot", {{"dt", "0.2"}, {"substeps", "4"}, {"integrator", "euler"}}},
       {"cartpole", {{"dt", "0.05"}, {"max_force", "1000"}, {"integrator", "rk4"}}},
       {"cartpole", {{"dt", "0.05"}, {"gravity", "100"}}},
-      {"swimmer", {{"segments", "40"}, {"horizon", "0"}}},
-      {"swimmer", {{"segments", "5"}, {"substeps", "1"}, {"integrator", "rk4"}}},
-      {"swimmer", {{"segments", "4"}, {"viscosity", "100"}, {"substeps", "100"}}},
+      {"swimmer", {{"segments", "20"}, {"horizon", "0"}}},
+      {"swimmer", {{"segments", "40"}, {"substeps", "20"}, {"horizon", "0"}}},
+      {"swimmer", {{"segments", "3"}, {"substeps", "1"}, {"integrator", "rk4"}}},
+      {"swimmer", {{"segments", "4"}, {"viscosity", "100"}, {"substeps", "20"}}},
+      {"swimmer", {{"segments", "8"}, {"viscosity", "0"}, {"substeps", "40"}}},
       {"swimmer", {{"max_torque", "100"}, {"horizon", "0"}}},
   };
   for (const auto& [name, params] : edges) {
