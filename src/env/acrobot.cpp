@@ -22,44 +22,32 @@ constexpr double kMaxVel1 = 4 * kPi, kMaxVel2 = 9 * kPi;
 
 const ParamTable<AcrobotConfig>& AcrobotConfig::table() {
   using Dynamics = AcrobotConfig::Dynamics;
-  static const auto table =
-      ParamTable<AcrobotConfig>("acrobot")
-          .choice(
-              "dynamics", [](auto& c) -> auto& { return c.dynamics; },
-              std::vector<std::pair<std::string, Dynamics>>{{"book", Dynamics::Book},
-                                                            {"nips", Dynamics::Nips}},
-              "book: Sutton & Barto's equations; nips: without the dth1^2 term in ddth2")
-          .choice(
-              "integrator", [](auto& c) -> auto& { return c.integrator; }, integratorNames(),
-              "rk4: Gymnasium's; euler: Sutton & Barto's, with dt=0.2 substeps=4")
-          .real(
-              "dt", [](auto& c) -> auto& { return c.dt; }, 1e-4, 10.0,
-              "control interval in seconds; the torque is held over it")
-          .integer(
-              "substeps", [](auto& c) -> auto& { return c.substeps; }, 1, 10000,
-              "integration steps per control interval; angles wrapped and velocities clipped "
-              "after each")
-          .real(
-              "max_torque", [](auto& c) -> auto& { return c.maxTorque; }, 1e-3, 100.0,
-              "torque bound (continuous) or magnitude (discrete)")
-          .choice(
-              "actions", [](auto& c) -> auto& { return c.discrete; },
-              std::vector<std::pair<std::string, bool>>{{"continuous", false}, {"discrete", true}},
-              "continuous: tau in [-max_torque, max_torque], clipped; discrete: 0, 1, 2 = -1, 0, "
-              "+1 x max_torque")
-          .integer(
-              "max_steps", [](auto& c) -> auto& { return c.maxSteps; }, 0, 1000000000,
-              "time limit in steps (truncation); 0 = none")
-          // Beyond these steps the integrator no longer follows the dynamics (the velocities
-          // reach their clipping bounds within a step).
-          .rule(
-              "dt",
-              [](const AcrobotConfig& c) {
-                return c.dt / c.substeps <=
-                       (c.integrator == Integrator::Rk4 ? 0.2 : 0.05) * (1 + 1e-12);
-              },
-              "the integration step dt / substeps must be at most 0.2 s with rk4 (Gymnasium's "
-              "step) and 0.05 s with euler (Sutton & Barto's)");
+  static const auto table = [] {
+    ParamTable<AcrobotConfig> t("acrobot");
+    t.choice(
+        "dynamics", [](auto& c) -> auto& { return c.dynamics; },
+        std::vector<std::pair<std::string, Dynamics>>{{"book", Dynamics::Book},
+                                                      {"nips", Dynamics::Nips}},
+        "book: Sutton & Barto's equations; nips: without the dth1^2 term in ddth2");
+    // Beyond these steps the velocities reach their clipping bounds within a step.
+    declareIntegration(
+        t, "rk4: Gymnasium's; euler: Sutton & Barto's, with dt=0.2 substeps=4",
+        "integration steps per control interval; angles wrapped and velocities clipped after each",
+        [](const AcrobotConfig& c) { return c.integrator == Integrator::Rk4 ? 0.2 : 0.05; },
+        "at most 0.2 s with rk4 (Gymnasium's step) and 0.05 s with euler (Sutton & Barto's)");
+    t.real(
+         "max_torque", [](auto& c) -> auto& { return c.maxTorque; }, 1e-3, 100.0,
+         "torque bound (continuous) or magnitude (discrete)")
+        .choice(
+            "actions", [](auto& c) -> auto& { return c.discrete; },
+            std::vector<std::pair<std::string, bool>>{{"continuous", false}, {"discrete", true}},
+            "continuous: tau in [-max_torque, max_torque], clipped; discrete: 0, 1, 2 = -1, 0, "
+            "+1 x max_torque")
+        .integer(
+            "max_steps", [](auto& c) -> auto& { return c.maxSteps; }, 0, 1000000000,
+            "time limit in steps (truncation); 0 = none");
+    return t;
+  }();
   return table;
 }
 

@@ -19,35 +19,29 @@ constexpr double kThetaThreshold = 12 * 2 * 3.141592653589793 / 360;  // 0.20943
 }  // namespace
 
 const ParamTable<CartPoleConfig>& CartPoleConfig::table() {
-  static const auto table =
-      ParamTable<CartPoleConfig>("cartpole")
-          .real(
-              "gravity", [](auto& c) -> auto& { return c.gravity; }, 0.0, 100.0,
-              "gravitational acceleration in m/s^2 (CLSquare: 9.81)")
-          .choice(
-              "integrator", [](auto& c) -> auto& { return c.integrator; }, integratorNames(),
-              "euler: Gymnasium's, every right-hand side from the old state; rk4")
-          .real(
-              "dt", [](auto& c) -> auto& { return c.dt; }, 1e-4, 10.0,
-              "control interval in seconds; the force is held over it")
-          .integer(
-              "substeps", [](auto& c) -> auto& { return c.substeps; }, 1, 10000,
-              "integration steps per control interval (CLSquare: rk4 with 10)")
-          .real(
-              "max_force", [](auto& c) -> auto& { return c.maxForce; }, 1e-3, 1000.0,
-              "force bound (continuous) or magnitude (discrete), N")
-          .choice(
-              "actions", [](auto& c) -> auto& { return c.discrete; },
-              std::vector<std::pair<std::string, bool>>{{"continuous", false}, {"discrete", true}},
-              "continuous: F in [-max_force, max_force], clipped; discrete: 0, 1 = -max_force, "
-              "+max_force")
-          .integer(
-              "max_steps", [](auto& c) -> auto& { return c.maxSteps; }, 0, 1000000000,
-              "time limit in steps (truncation); 0 = none")
-          // The pole's time scale is sqrt(l / g) ~ 0.2 s: longer steps no longer follow it.
-          .rule(
-              "dt", [](const CartPoleConfig& c) { return c.dt / c.substeps <= 0.05 * (1 + 1e-12); },
-              "the integration step dt / substeps must be at most 0.05 s (Gymnasium's: 0.02 s)");
+  static const auto table = [] {
+    ParamTable<CartPoleConfig> t("cartpole");
+    t.real(
+        "gravity", [](auto& c) -> auto& { return c.gravity; }, 0.0, 100.0,
+        "gravitational acceleration in m/s^2 (CLSquare: 9.81)");
+    // The pole's time scale is sqrt(l / g) ~ 0.2 s: longer steps no longer follow it.
+    declareIntegration(
+        t, "euler: Gymnasium's, every right-hand side from the old state; rk4",
+        "integration steps per control interval (CLSquare: rk4 with 10)",
+        [](const CartPoleConfig&) { return 0.05; }, "at most 0.05 s (Gymnasium's: 0.02 s)");
+    t.real(
+         "max_force", [](auto& c) -> auto& { return c.maxForce; }, 1e-3, 1000.0,
+         "force bound (continuous) or magnitude (discrete), N")
+        .choice(
+            "actions", [](auto& c) -> auto& { return c.discrete; },
+            std::vector<std::pair<std::string, bool>>{{"continuous", false}, {"discrete", true}},
+            "continuous: F in [-max_force, max_force], clipped; discrete: 0, 1 = -max_force, "
+            "+max_force")
+        .integer(
+            "max_steps", [](auto& c) -> auto& { return c.maxSteps; }, 0, 1000000000,
+            "time limit in steps (truncation); 0 = none");
+    return t;
+  }();
   return table;
 }
 

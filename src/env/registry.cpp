@@ -30,31 +30,8 @@ Registry& Registry::global() {
 }
 
 void Registry::add(EnvInfo info) {
-  if (info.name.empty() || !info.make) {
-    throw InputError("an environment needs a name and a factory", "environment registry");
-  }
-  if (entries_.count(info.name)) {
-    throw InputError(fmt::format("an environment named '{}' is already registered", info.name),
-                     "environment registry");
-  }
-  std::string name = info.name;
-  entries_.emplace(std::move(name), std::move(info));
-}
-
-const EnvInfo& Registry::info(const std::string& name) const {
-  const auto it = entries_.find(name);
-  if (it == entries_.end()) {
-    throw InputError(
-        fmt::format("unknown environment '{}' (known: {})", name, fmt::join(names(), ", ")),
-        "environment");
-  }
-  return it->second;
-}
-
-std::vector<std::string> Registry::names() const {
-  std::vector<std::string> out;
-  for (const auto& [name, info] : entries_) out.push_back(name);
-  return out;
+  if (!info.make) throw InputError("an environment needs a factory", "environment registry");
+  NamedRegistry::add(std::move(info));
 }
 
 std::unique_ptr<Environment> Registry::make(const std::string& name, const Params& params) const {

@@ -12,49 +12,40 @@
 namespace gpfd::env {
 
 const ParamTable<SwimmerConfig>& SwimmerConfig::table() {
-  static const auto table =
-      ParamTable<SwimmerConfig>("swimmer")
-          .integer(
-              "segments", [](auto& c) -> auto& { return c.segments; }, 2, 100,
-              "number of segments n (2n + 2 state variables)")
-          .choice(
-              "integrator", [](auto& c) -> auto& { return c.integrator; }, integratorNames(),
-              "euler: Coulom's; rk4")
-          .real(
-              "dt", [](auto& c) -> auto& { return c.dt; }, 1e-4, 10.0,
-              "control interval in seconds; the torques are held over it")
-          .integer(
-              "substeps", [](auto& c) -> auto& { return c.substeps; }, 1, 10000,
-              "integration steps per control interval; angles wrapped after each")
-          .real(
-              "max_torque", [](auto& c) -> auto& { return c.maxTorque; }, 1e-3, 100.0,
-              "joint torque bound: u_j in [-max_torque, max_torque]")
-          .integer(
-              "horizon", [](auto& c) -> auto& { return c.horizon; }, 0, 1000000000,
-              "time limit in steps (truncation); 0 = none")
-          .real(
-              "viscosity", [](auto& c) -> auto& { return c.viscosity; }, 0.0, 100.0,
-              "fluid viscosity k of the normal drag")
-          .real(
-              "start_angle_noise", [](auto& c) -> auto& { return c.startAngleNoise; }, 0.0,
-              3.141592653589793, "reset: at rest, each th_i ~ U(-a, a) (a = this value)")
-          // The explicit integrators follow the dynamics only while the step resolves the fastest
-          // mode, which speeds up with the number of segments and the viscosity; without drag
-          // nothing damps the energy that explicit Euler adds. The bounds are empirical, about
-          // half of where random-torque runs blow up (docs/environments.md, "Swimmer
-          // integration").
-          .rule(
-              "substeps",
-              [](const SwimmerConfig& c) {
-                const double stiffness = c.segments * std::max(1.0, c.viscosity / 10.0);
-                const double bound = c.integrator == Integrator::Rk4 ? 0.3
-                                     : c.viscosity >= 1.0            ? 0.2
-                                                                     : 0.05;
-                return c.dt / c.substeps * stiffness <= bound * (1 + 1e-12);  // Rounding.
-              },
-              "the integration step h = dt / substeps is too long for this swimmer: h * segments "
-              "* max(1, viscosity / 10) must be at most 0.2 with euler (0.05 below viscosity 1) "
-              "and 0.3 with rk4; raise substeps");
+  static const auto table = [] {
+    ParamTable<SwimmerConfig> t("swimmer");
+    t.integer(
+        "segments", [](auto& c) -> auto& { return c.segments; }, 2, 100,
+        "number of segments n (2n + 2 state variables)");
+    // The explicit integrators follow the dynamics only while the step resolves the fastest mode,
+    // which speeds up with the number of segments and the viscosity; without drag nothing damps
+    // the energy that explicit Euler adds. The bounds are empirical, about half of where
+    // random-torque runs blow up (docs/environments.md, "Swimmer integration").
+    declareIntegration(
+        t, "euler: Coulom's; rk4",
+        "integration steps per control interval; angles wrapped after each",
+        [](const SwimmerConfig& c) {
+          const double bound = c.integrator == Integrator::Rk4 ? 0.3
+                               : c.viscosity >= 1.0            ? 0.2
+                                                               : 0.05;
+          return bound / (c.segments * std::max(1.0, c.viscosity / 10.0));
+        },
+        "h * segments * max(1, viscosity / 10) must be at most 0.2 with euler (0.05 below "
+        "viscosity 1) and 0.3 with rk4");
+    t.real(
+         "max_torque", [](auto& c) -> auto& { return c.maxTorque; }, 1e-3, 100.0,
+         "joint torque bound: u_j in [-max_torque, max_torque]")
+        .integer(
+            "horizon", [](auto& c) -> auto& { return c.horizon; }, 0, 1000000000,
+            "time limit in steps (truncation); 0 = none")
+        .real(
+            "viscosity", [](auto& c) -> auto& { return c.viscosity; }, 0.0, 100.0,
+            "fluid viscosity k of the normal drag")
+        .real(
+            "start_angle_noise", [](auto& c) -> auto& { return c.startAngleNoise; }, 0.0,
+            std::numbers::pi, "reset: at rest, each th_i ~ U(-a, a) (a = this value)");
+    return t;
+  }();
   return table;
 }
 

@@ -26,32 +26,11 @@ LearnerRegistry& LearnerRegistry::global() {
 }
 
 void LearnerRegistry::add(LearnerInfo info) {
-  if (info.name.empty() || !info.make || !info.unsuitable || info.budgetParam.empty()) {
-    throw InputError(
-        "a learner needs a name, a factory, a suitability check and a budget parameter",
-        "learner registry");
-  }
-  if (entries_.count(info.name)) {
-    throw InputError(fmt::format("a learner named '{}' is already registered", info.name),
+  if (!info.make || !info.unsuitable || info.budgetParam.empty()) {
+    throw InputError("a learner needs a factory, a suitability check and a budget parameter",
                      "learner registry");
   }
-  std::string name = info.name;
-  entries_.emplace(std::move(name), std::move(info));
-}
-
-const LearnerInfo& LearnerRegistry::info(const std::string& name) const {
-  const auto it = entries_.find(name);
-  if (it == entries_.end()) {
-    throw InputError(
-        fmt::format("unknown learner '{}' (known: {})", name, fmt::join(names(), ", ")), "learner");
-  }
-  return it->second;
-}
-
-std::vector<std::string> LearnerRegistry::names() const {
-  std::vector<std::string> out;
-  for (const auto& [name, info] : entries_) out.push_back(name);
-  return out;
+  NamedRegistry::add(std::move(info));
 }
 
 std::unique_ptr<Learner> LearnerRegistry::make(const std::string& name,

@@ -34,7 +34,7 @@ TEST(EnvParams, PhysicalParametersOutsideTheirRangesAreRefused) {
 
 TEST(EnvParams, TheIntegrationStepIsBoundedTogetherWithWhatSetsIt) {
   // Acrobot: 0.2 s with rk4, 0.05 s with euler.
-  EXPECT_NE(refusal("acrobot", {{"dt", "1"}}).find("(acrobot.dt)"), std::string::npos);
+  EXPECT_NE(refusal("acrobot", {{"dt", "1"}}).find("(acrobot.substeps)"), std::string::npos);
   EXPECT_EQ(refusal("acrobot", {{"dt", "1"}, {"substeps", "5"}}), "accepted");
   EXPECT_NE(refusal("acrobot", {{"integrator", "euler"}}), "accepted");
   EXPECT_EQ(refusal("acrobot", {{"integrator", "euler"}, {"substeps", "4"}}), "accepted");

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "gpfd/util/named_registry.hpp"
 #include "gpfd/util/params.hpp"
 #include "gpfd/util/rng.hpp"
 
@@ -104,21 +105,17 @@ struct EnvInfo {
 
 // Maps names to factories. The built-in environments are registered on first use (one line each
 // in src/env/registry.cpp); plug-ins and programs add their own with add() (docs/environments.md).
-class Registry {
+// info(name) and names() come from NamedRegistry.
+class Registry : public NamedRegistry<EnvInfo> {
  public:
+  Registry() : NamedRegistry("environment") {}
   static Registry& global();
 
-  // Throws InputError when the name is taken.
+  // Throws InputError when the name is taken or the factory missing.
   void add(EnvInfo info);
-  // Throws InputError naming the unknown environment (with the known names).
-  const EnvInfo& info(const std::string& name) const;
-  std::vector<std::string> names() const;
   // Validates the parameter names against info(name).params (InputError on an unknown one) and
   // makes a fresh instance.
   std::unique_ptr<Environment> make(const std::string& name, const Params& params = {}) const;
-
- private:
-  std::map<std::string, EnvInfo> entries_;
 };
 
 }  // namespace gpfd::env

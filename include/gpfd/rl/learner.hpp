@@ -64,23 +64,19 @@ struct LearnerInfo {
   std::string rowName;
 };
 
-class LearnerRegistry {
+// info(name) and names() come from NamedRegistry.
+class LearnerRegistry : public NamedRegistry<LearnerInfo> {
  public:
+  LearnerRegistry() : NamedRegistry("learner") {}
   static LearnerRegistry& global();
 
   // Throws InputError when the name is taken or the entry is incomplete.
   void add(LearnerInfo info);
-  // Throws InputError naming the unknown learner (with the known names).
-  const LearnerInfo& info(const std::string& name) const;
-  std::vector<std::string> names() const;
   // Checks the parameter names against info(name).params (InputError "<name>.<key>" on an unknown
   // one) and makes the learner.
   std::unique_ptr<Learner> make(const std::string& name, const Params& params) const;
   // InputError when learner `name` cannot learn on `env`.
   void checkSuitable(const std::string& name, env::Environment& env) const;
-
- private:
-  std::map<std::string, LearnerInfo> entries_;
 };
 
 }  // namespace gpfd::rl
