@@ -34,15 +34,27 @@ void describeParams(std::string& out, const std::vector<ParamSpec>& params) {
   }
 }
 
+// Every entry of `registry`: "name: description", the lines `details(out, info)` adds, and its
+// parameters.
+template <typename Registry, typename Details>
+std::string describe(const Registry& registry, const Details& details) {
+  std::string out;
+  for (const auto& name : registry.names()) {
+    const auto& info = registry.info(name);
+    fmt::format_to(std::back_inserter(out), "{}: {}\n", name, info.description);
+    details(out, info);
+    describeParams(out, info.params);
+    out += "\n";
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string describeEnvironments() {
   const auto& registry = env::Registry::global();
-  std::string out;
-  for (const auto& name : registry.names()) {
-    const auto& info = registry.info(name);
-    const auto instance = registry.make(name);
-    fmt::format_to(std::back_inserter(out), "{}: {}\n", name, info.description);
+  return describe(registry, [&](std::string& out, const env::EnvInfo& info) {
+    const auto instance = registry.make(info.name);
     fmt::format_to(std::back_inserter(out), "  state ({}, with default parameters): {}\n",
                    instance->stateDim(), fmt::join(instance->stateNames(), ", "));
     fmt::format_to(std::back_inserter(out), "  actions: {}\n",
@@ -51,25 +63,15 @@ std::string describeEnvironments() {
                    info.defaultLearner,
                    instance->typicalStateRanges().empty() ? "unknown (no Fourier basis)"
                                                           : "known (Fourier basis available)");
-    describeParams(out, info.params);
-    out += "\n";
-  }
-  return out;
+  });
 }
 
 std::string describeLearners() {
-  const auto& registry = rl::LearnerRegistry::global();
-  std::string out;
-  for (const auto& name : registry.names()) {
-    const auto& info = registry.info(name);
-    fmt::format_to(std::back_inserter(out), "{}: {}\n", name, info.description);
+  return describe(rl::LearnerRegistry::global(), [](std::string& out, const rl::LearnerInfo& info) {
     fmt::format_to(std::back_inserter(out), "  needs: {}\n", info.needs);
     fmt::format_to(std::back_inserter(out), "  budget: {} (one curve row per {})\n",
                    info.budgetParam, info.rowName);
-    describeParams(out, info.params);
-    out += "\n";
-  }
-  return out;
+  });
 }
 
 std::string learnerParamSummary() {

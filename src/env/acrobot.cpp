@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "gpfd/env/angles.hpp"
+#include "gpfd/env/common_params.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::env {
@@ -36,16 +37,13 @@ const ParamTable<AcrobotConfig>& AcrobotConfig::table() {
         [](const AcrobotConfig& c) { return c.integrator == Integrator::Rk4 ? 0.2 : 0.05; },
         "at most 0.2 s with rk4 (Gymnasium's step) and 0.05 s with euler (Sutton & Barto's)");
     t.real(
-         "max_torque", [](auto& c) -> auto& { return c.maxTorque; }, 1e-3, 100.0,
-         "torque bound (continuous) or magnitude (discrete)")
-        .choice(
-            "actions", [](auto& c) -> auto& { return c.discrete; },
-            std::vector<std::pair<std::string, bool>>{{"continuous", false}, {"discrete", true}},
-            "continuous: tau in [-max_torque, max_torque], clipped; discrete: 0, 1, 2 = -1, 0, "
-            "+1 x max_torque")
-        .integer(
-            "max_steps", [](auto& c) -> auto& { return c.maxSteps; }, 0, 1000000000,
-            "time limit in steps (truncation); 0 = none");
+        "max_torque", [](auto& c) -> auto& { return c.maxTorque; }, 1e-3, 100.0,
+        "torque bound (continuous) or magnitude (discrete)");
+    declareActionKind(t,
+                      "continuous: tau in [-max_torque, max_torque], clipped; discrete: 0, 1, 2 "
+                      "= -1, 0, +1 x max_torque");
+    declareTimeLimit(
+        t, "max_steps", [](auto& c) -> auto& { return c.maxSteps; }, "steps");
     return t;
   }();
   return table;

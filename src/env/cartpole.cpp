@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gpfd/env/common_params.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::env {
@@ -30,16 +31,13 @@ const ParamTable<CartPoleConfig>& CartPoleConfig::table() {
         "integration steps per control interval (CLSquare: rk4 with 10)",
         [](const CartPoleConfig&) { return 0.05; }, "at most 0.05 s (Gymnasium's: 0.02 s)");
     t.real(
-         "max_force", [](auto& c) -> auto& { return c.maxForce; }, 1e-3, 1000.0,
-         "force bound (continuous) or magnitude (discrete), N")
-        .choice(
-            "actions", [](auto& c) -> auto& { return c.discrete; },
-            std::vector<std::pair<std::string, bool>>{{"continuous", false}, {"discrete", true}},
-            "continuous: F in [-max_force, max_force], clipped; discrete: 0, 1 = -max_force, "
-            "+max_force")
-        .integer(
-            "max_steps", [](auto& c) -> auto& { return c.maxSteps; }, 0, 1000000000,
-            "time limit in steps (truncation); 0 = none");
+        "max_force", [](auto& c) -> auto& { return c.maxForce; }, 1e-3, 1000.0,
+        "force bound (continuous) or magnitude (discrete), N");
+    declareActionKind(t,
+                      "continuous: F in [-max_force, max_force], clipped; discrete: 0, 1 = "
+                      "-max_force, +max_force");
+    declareTimeLimit(
+        t, "max_steps", [](auto& c) -> auto& { return c.maxSteps; }, "steps");
     return t;
   }();
   return table;

@@ -20,14 +20,7 @@ void addBuiltIns(Registry& registry) {
 
 }  // namespace
 
-Registry& Registry::global() {
-  static Registry registry = [] {
-    Registry r;
-    addBuiltIns(r);
-    return r;
-  }();
-  return registry;
-}
+Registry& Registry::global() { return instance<Registry>(addBuiltIns); }
 
 void Registry::add(EnvInfo info) {
   if (!info.make) throw InputError("an environment needs a factory", "environment registry");

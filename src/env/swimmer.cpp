@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "gpfd/env/angles.hpp"
+#include "gpfd/env/common_params.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::env {
@@ -33,14 +34,13 @@ const ParamTable<SwimmerConfig>& SwimmerConfig::table() {
         "h * segments * max(1, viscosity / 10) must be at most 0.2 with euler (0.05 below "
         "viscosity 1) and 0.3 with rk4");
     t.real(
-         "max_torque", [](auto& c) -> auto& { return c.maxTorque; }, 1e-3, 100.0,
-         "joint torque bound: u_j in [-max_torque, max_torque]")
-        .integer(
-            "horizon", [](auto& c) -> auto& { return c.horizon; }, 0, 1000000000,
-            "time limit in steps (truncation); 0 = none")
-        .real(
-            "viscosity", [](auto& c) -> auto& { return c.viscosity; }, 0.0, 100.0,
-            "fluid viscosity k of the normal drag")
+        "max_torque", [](auto& c) -> auto& { return c.maxTorque; }, 1e-3, 100.0,
+        "joint torque bound: u_j in [-max_torque, max_torque]");
+    declareTimeLimit(
+        t, "horizon", [](auto& c) -> auto& { return c.horizon; }, "steps");
+    t.real(
+         "viscosity", [](auto& c) -> auto& { return c.viscosity; }, 0.0, 100.0,
+         "fluid viscosity k of the normal drag")
         .real(
             "start_angle_noise", [](auto& c) -> auto& { return c.startAngleNoise; }, 0.0,
             std::numbers::pi, "reset: at rest, each th_i ~ U(-a, a) (a = this value)");

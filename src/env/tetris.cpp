@@ -5,28 +5,30 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gpfd/env/common_params.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::env {
 
 const ParamTable<TetrisConfig>& TetrisConfig::table() {
-  static const auto table =
-      ParamTable<TetrisConfig>("tetris")
-          .integer(
-              "rows", [](auto& c) -> auto& { return c.rows; }, 4, TetrisBoard::kMaxRows,
-              "board height (the paper: 12; the literature: 20)")
-          .integer(
-              "cols", [](auto& c) -> auto& { return c.cols; }, 4, TetrisBoard::kMaxCols,
-              "board width (the paper: 8; the literature: 10)")
-          .choice(
-              "state", [](auto& c) -> auto& { return c.state; },
-              std::vector<std::pair<std::string, TetrisFeatures>>{
-                  {"paper", TetrisFeatures::Paper}, {"bertsekas", TetrisFeatures::Bertsekas}},
-              "paper: heights, |differences|, max height, holes, piece 0-6 = IOTSZLJ; bertsekas: "
-              "the same with a constant 1 instead of the piece")
-          .integer(
-              "max_steps", [](auto& c) -> auto& { return c.maxSteps; }, 0, 1000000000,
-              "time limit in pieces (truncation); 0 = none");
+  static const auto table = [] {
+    ParamTable<TetrisConfig> t("tetris");
+    t.integer(
+         "rows", [](auto& c) -> auto& { return c.rows; }, 4, TetrisBoard::kMaxRows,
+         "board height (the paper: 12; the literature: 20)")
+        .integer(
+            "cols", [](auto& c) -> auto& { return c.cols; }, 4, TetrisBoard::kMaxCols,
+            "board width (the paper: 8; the literature: 10)")
+        .choice(
+            "state", [](auto& c) -> auto& { return c.state; },
+            std::vector<std::pair<std::string, TetrisFeatures>>{
+                {"paper", TetrisFeatures::Paper}, {"bertsekas", TetrisFeatures::Bertsekas}},
+            "paper: heights, |differences|, max height, holes, piece 0-6 = IOTSZLJ; bertsekas: "
+            "the same with a constant 1 instead of the piece");
+    declareTimeLimit(
+        t, "max_steps", [](auto& c) -> auto& { return c.maxSteps; }, "pieces");
+    return t;
+  }();
   return table;
 }
 

@@ -16,14 +16,7 @@ void addBuiltIns(LearnerRegistry& registry) {
 
 }  // namespace
 
-LearnerRegistry& LearnerRegistry::global() {
-  static LearnerRegistry registry = [] {
-    LearnerRegistry r;
-    addBuiltIns(r);
-    return r;
-  }();
-  return registry;
-}
+LearnerRegistry& LearnerRegistry::global() { return instance<LearnerRegistry>(addBuiltIns); }
 
 void LearnerRegistry::add(LearnerInfo info) {
   if (!info.make || !info.unsuitable || info.budgetParam.empty()) {

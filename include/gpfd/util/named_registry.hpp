@@ -45,6 +45,18 @@ class NamedRegistry {
     return out;
   }
 
+ protected:
+  // The one instance of a derived registry, filled by `fill` on first use (its global()).
+  template <typename Derived>
+  static Derived& instance(void (*fill)(Derived&)) {
+    static Derived registry = [fill] {
+      Derived r;
+      fill(r);
+      return r;
+    }();
+    return registry;
+  }
+
  private:
   std::string kind_;
   std::map<std::string, Info> entries_;
