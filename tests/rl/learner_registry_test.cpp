@@ -2,6 +2,8 @@
 // need from an environment, and training through the registry equal to calling the algorithms.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "gpfd/env/tetris.hpp"
 #include "gpfd/rl/game_afterstates.hpp"
 #include "gpfd/rl/lambda_policy_iteration.hpp"
@@ -33,7 +35,10 @@ void expectSameCurves(const LearningCurve& a, const LearningCurve& b) {
 }
 
 TEST(LearnerRegistry, KnowsTheBuiltInLearnersAndTheirDeclarations) {
-  EXPECT_EQ(learners().names(), (std::vector<std::string>{"lpi", "pg"}));
+  const auto names = learners().names();
+  for (const char* name : {"lpi", "pg"}) {
+    EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+  }
   EXPECT_EQ(learners().info("pg").budgetParam, "updates");
   EXPECT_EQ(learners().info("lpi").budgetParam, "iterations");
   for (const auto& name : learners().names()) {
