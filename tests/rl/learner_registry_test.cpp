@@ -35,9 +35,9 @@ void expectSameCurves(const LearningCurve& a, const LearningCurve& b) {
 }
 
 TEST(LearnerRegistry, KnowsTheBuiltInLearnersAndTheirDeclarations) {
-  const auto names = learners().names();
+  const auto registered = learners().names();
   for (const char* name : {"lpi", "pg"}) {
-    EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+    EXPECT_NE(std::find(registered.begin(), registered.end(), name), registered.end()) << name;
   }
   EXPECT_EQ(learners().info("pg").budgetParam, "updates");
   EXPECT_EQ(learners().info("lpi").budgetParam, "iterations");
