@@ -29,8 +29,8 @@ struct ExperimentConfig {
   std::string env = "cartpole";
   std::map<std::string, std::string> envParams;
 
-  std::string learner = "pg";  // pg | lpi
-  // The short-trial budget and settings of the learner (rl::apply*Param keys).
+  std::string learner = "pg";  // A registered learner (gpfd learners).
+  // The short-trial budget and settings of the learner (its declared parameters).
   std::map<std::string, std::string> learnerParams;
 
   int trials = 5;  // K short learning trials per fitness evaluation (the paper: 4-10).
