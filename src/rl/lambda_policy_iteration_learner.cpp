@@ -33,7 +33,7 @@ const ParamTable<Settings>& table() {
             "step size: r <- (1 - step) r + step r_fit")
         .integer(
             "max_moves", [](auto& c) -> auto& { return c.algorithm.maxMovesPerGame; }, 1,
-            1000000000000, "cap on a game's moves (a capped game bootstraps its last afterstate)")
+            1000000000, "cap on a game's moves (a capped game bootstraps its last afterstate)")
         .choice(
             "game_over", [](auto& c) -> auto& { return c.algorithm.gameOver; },
             std::vector<std::pair<std::string, GameOver>>{{"zero", GameOver::Zero},
