@@ -8,9 +8,9 @@
 #include "gpfd/env/tetris.hpp"
 #include "gpfd/expr/features_file.hpp"
 #include "gpfd/jit/compiled_feature_map.hpp"
+#include "gpfd/rl/game_afterstates.hpp"
 #include "gpfd/rl/lambda_policy_iteration.hpp"
 #include "gpfd/rl/policy_gradient.hpp"
-#include "gpfd/rl/tetris_afterstates.hpp"
 
 namespace {
 
@@ -72,12 +72,15 @@ BENCHMARK(BM_BareStepsAcrobot)->Unit(benchmark::kMillisecond);
 // Bertsekas-Ioffe start (short games, so that a run takes milliseconds).
 void BM_LpiTetris(benchmark::State& state) {
   env::Tetris tetris;
-  rl::TetrisAfterstateProblem problem(tetris);
-  const jit::RawFeatureMap map(tetris.stateDim());
+  rl::GameAfterstateProblem problem(tetris, tetris);
+  const features::RawFeatureMap map(tetris.stateDim());
   rl::LambdaPolicyIterationConfig config;
   config.iterations = 2;
   config.gamesPerIteration = 10;
-  config.initialWeights = rl::bertsekasIoffeStartWeights(8, 1);
+  // Bertsekas & Ioffe's weights (the same for both state layouts), then 0 for the bias.
+  config.initialWeights =
+      env::Tetris(env::TetrisConfig::fromParams({{"state", "bertsekas"}})).knownValueWeights();
+  config.initialWeights.push_back(0.0);
   std::int64_t games = 0, moves = 0;
   std::uint64_t seed = 0;
   for (auto _ : state) {
@@ -96,8 +99,8 @@ BENCHMARK(BM_LpiTetris)->Unit(benchmark::kMillisecond);
 // The same without the learner: afterstates, their features and a random non-ending move.
 void BM_BareMovesTetris(benchmark::State& state) {
   env::Tetris tetris;
-  rl::TetrisAfterstateProblem problem(tetris);
-  const jit::RawFeatureMap map(tetris.stateDim());
+  rl::GameAfterstateProblem problem(tetris, tetris);
+  const features::RawFeatureMap map(tetris.stateDim());
   std::vector<double> phi;
   std::int64_t moves = 0;
   Rng rng(1);

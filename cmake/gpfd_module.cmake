@@ -1,18 +1,20 @@
-# gpfd_module(NAME DEPS dep...) defines the library gpfd_NAME (alias gpfd::NAME) from
-# src/NAME/*.cpp with the public headers in include/gpfd/NAME. A module without sources yet is an
-# interface library, so that every module name exists from the start.
+# gpfd_module(NAME DEPS dep...) defines the library gpfd_NAME (alias gpfd::NAME, installed and
+# exported as gpfd::NAME) from src/NAME/*.cpp with the public headers in include/gpfd/NAME. A
+# module without sources is an interface library, so that every module name exists.
 function(gpfd_module name)
   cmake_parse_arguments(ARG "" "" "DEPS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/${name}/*.cpp)
+  set(headers $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:include>)
   if(sources)
     add_library(gpfd_${name} STATIC ${sources})
-    target_include_directories(gpfd_${name} PUBLIC ${PROJECT_SOURCE_DIR}/include)
+    target_include_directories(gpfd_${name} PUBLIC ${headers})
     target_link_libraries(gpfd_${name} PUBLIC ${ARG_DEPS})
     target_compile_options(gpfd_${name} PRIVATE ${GPFD_WARNINGS})
   else()
     add_library(gpfd_${name} INTERFACE)
-    target_include_directories(gpfd_${name} INTERFACE ${PROJECT_SOURCE_DIR}/include)
+    target_include_directories(gpfd_${name} INTERFACE ${headers})
     target_link_libraries(gpfd_${name} INTERFACE ${ARG_DEPS})
   endif()
+  set_target_properties(gpfd_${name} PROPERTIES EXPORT_NAME ${name})
   add_library(gpfd::${name} ALIAS gpfd_${name})
 endfunction()

@@ -7,10 +7,12 @@
 #include "config_loading.hpp"
 #include "gpfd/env/environment.hpp"
 #include "gpfd/expr/features_file.hpp"
-#include "gpfd/rl/learner_params.hpp"
+#include "gpfd/rl/learner.hpp"
 #include "gpfd/run/assessment.hpp"
 #include "gpfd/util/directory_lock.hpp"
 #include "gpfd/util/error.hpp"
+#include "gpfd/util/number.hpp"
+#include "listings.hpp"
 #include "param_routing.hpp"
 
 namespace gpfd::app {
@@ -33,17 +35,20 @@ struct AssessOptions {
   bool quiet = false;
 };
 
-// Policy updates (pg) or iterations (lpi) of one assessment run.
+// The budget of one assessment run (policy updates, iterations: the learner's budget parameter).
 long long runBudget(const run::ExperimentConfig& config) {
+  const auto& learner = rl::LearnerRegistry::global().info(config.learner);
   auto params = config.learnerParams;
   for (const auto& [k, v] : config.assessParams) params[k] = v;
-  rl::PolicyGradientConfig pg;
-  rl::LambdaPolicyIterationConfig lpi;
-  for (const auto& [k, v] : params) {
-    (void)(config.learner == "lpi" ? rl::applyLambdaPolicyIterationParam(lpi, k, v)
-                                   : rl::applyPolicyGradientParam(pg, k, v));
+  if (const auto given = params.find(learner.budgetParam); given != params.end()) {
+    return parseInteger(given->second, learner.name + "." + learner.budgetParam);
   }
-  return config.learner == "lpi" ? lpi.iterations : pg.updates;
+  for (const auto& spec : learner.params) {
+    if (spec.name == learner.budgetParam) {
+      return parseInteger(spec.defaultValue, learner.name + "." + learner.budgetParam);
+    }
+  }
+  return 0;
 }
 
 // The results directory: --out (refused when it holds an assessment, unless --force), or a fresh
@@ -70,16 +75,14 @@ run::ExperimentConfig assessConfig(const AssessOptions& o) {
   } else {
     if (o.env.empty()) throw InputError("give an environment or --config", "gpfd assess");
     config.env = o.env;
-    config.learner = o.env == "tetris" ? "lpi" : "pg";
+    config.learner = env::Registry::global().info(o.env).defaultLearner;
   }
-  const auto& info = env::Registry::global().info(config.env);
-  for (const auto& p : o.params) {
-    const auto [key, value] = splitKeyValue(p, "--param " + p);
-    (isEnvParam(info, key) ? config.envParams : config.assessParams)[key] = value;
-  }
+  const auto routed = routeParams(o.params, env::Registry::global().info(config.env), "--param");
+  for (const auto& [key, value] : routed.env) config.envParams[key] = value;
+  for (const auto& [key, value] : routed.learner) config.assessParams[key] = value;
   if (o.budget > 0) {
-    config.assessParams[config.learner == "lpi" ? "iterations" : "updates"] =
-        std::to_string(o.budget);
+    const auto& learner = rl::LearnerRegistry::global().info(config.learner);
+    config.assessParams[learner.budgetParam] = std::to_string(o.budget);
   }
   if (o.runs > 0) config.assessRuns = o.runs;
   config.seed = o.seed;
@@ -91,7 +94,7 @@ int assess(const AssessOptions& o) {
   const auto config = assessConfig(o);
   const run::LearningTask task(config, run::LearningTask::Budget::Assessment);
   const std::size_t dim = task.stateDim();
-  const auto raw = std::make_shared<const jit::RawFeatureMap>(dim);
+  const auto raw = std::make_shared<const features::RawFeatureMap>(dim);
 
   // Every input is read and checked before anything is written.
   std::vector<run::FeatureSet> sets;
@@ -130,7 +133,7 @@ int assess(const AssessOptions& o) {
       run::runAssessment(task, sets, config.assessRuns, config.seed, threads(o.threads));
   const auto summary = run::summarizeAssessment(result, 0);
   run::writeAssessment(out, result, summary, config.env + ": " + config.learner,
-                       config.learner == "lpi" ? "iteration" : "policy update");
+                       rl::LearnerRegistry::global().info(config.learner).rowName);
   int diverged = 0;
   for (const auto& row : summary) diverged += row.diverged;
   if (!o.quiet) {
@@ -175,9 +178,14 @@ const CommandRegistration registration{
           ->check(bounded(1, 9));
       cmd->add_option("--runs", o->runs, "Independent runs per set (default: the config's, 20)")
           ->check(bounded(1, kMaxRuns));
-      cmd->add_option("--budget", o->budget, "Policy updates (pg) or iterations (lpi) per run")
+      cmd->add_option("--budget", o->budget,
+                      "The learner's budget per run: sets its budget parameter (gpfd learners)")
           ->check(bounded(1, kMaxBudget));
       cmd->add_option("--param", o->params, "k=v for the environment or the learner (repeatable)");
+      cmd->footer(
+          "Learner parameters (defaults, ranges and meanings: gpfd learners; the "
+          "environments': gpfd envs):\n" +
+          learnerParamSummary());
       cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str()->check(seedValue());
       cmd->add_option("--threads", o->threads, "Worker threads (0: all cores)")
           ->check(threadCount());

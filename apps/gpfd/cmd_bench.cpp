@@ -10,10 +10,12 @@
 #include <sstream>
 #include <string>
 
+#include "bench_jit.hpp"
 #include "command.hpp"
 #include "gpfd/io/gnuplot.hpp"
 #include "gpfd/jit/aot_reference.hpp"
 #include "gpfd/jit/figure3.hpp"
+#include "gpfd/jit/x86_compiler.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
 
@@ -23,15 +25,6 @@ namespace {
 namespace fs = std::filesystem;
 using jit::BenchSet;
 using jit::Figure3Row;
-
-struct BenchJitArgs {
-  std::string depths = "2-8";
-  std::size_t calls = 1000000;
-  int runs = 10;
-  std::uint64_t seed = jit::kBenchDefaultSeed;
-  std::string out = "bench-jit";
-  std::size_t memoryCycles = 100000;
-};
 
 void parseDepths(const std::string& text, jit::Figure3Options& options) {
   int lo = 0, hi = 0;
@@ -165,7 +158,15 @@ std::string summary(const Table& t, const jit::Figure3Options& o, const jit::Mem
   return s.str();
 }
 
-int runBenchJit(const BenchJitArgs& args) {
+}  // namespace
+
+void runBenchJit(const BenchJitArgs& args) {
+  if (!jit::jitAvailable()) {
+    throw InputError(
+        "the JIT benchmark needs the JIT, which this build lacks (GPFD_WITH_JIT=OFF "
+        "or not x86-64)",
+        "gpfd bench jit");
+  }
   jit::Figure3Options options;
   parseDepths(args.depths, options);
   options.calls = args.calls;
@@ -194,9 +195,10 @@ int runBenchJit(const BenchJitArgs& args) {
   const std::string text = summary(table, options, memory);
   writeFileAtomically((dir / "jit_summary.txt").string(), text);
   plot(dir, table, options);
-  std::fputs(text.c_str(), stdout);
-  return 0;
+  if (args.print) std::fputs(text.c_str(), stdout);
 }
+
+namespace {
 
 const CommandRegistration registration{
     "bench", [](CLI::App& app) -> std::function<int()> {
@@ -222,7 +224,11 @@ const CommandRegistration registration{
                        "Compile/release cycles of the resident-memory check (0: skip)")
           ->capture_default_str()
           ->check(bounded(0, 100000000));
-      return [args, jitCmd]() { return jitCmd->parsed() ? runBenchJit(*args) : 2; };
+      return [args, jitCmd]() {
+        if (!jitCmd->parsed()) return 2;
+        runBenchJit(*args);
+        return 0;
+      };
     }};
 
 }  // namespace

@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <csignal>
 #include <filesystem>
 #include <optional>
 #include <thread>
@@ -17,6 +16,7 @@
 #include "gpfd/util/directory_lock.hpp"
 #include "gpfd/util/error.hpp"
 #include "gpfd/version.hpp"
+#include "interrupt.hpp"
 
 #ifdef GPFD_HAVE_MPI
 #include "gpfd/mpi/mpi_evaluator.hpp"
@@ -25,13 +25,6 @@
 
 namespace gpfd::app {
 namespace {
-
-std::atomic<bool> interrupted{false};
-
-extern "C" void onInterrupt(int) {
-  interrupted.store(true);
-  std::signal(SIGINT, SIG_DFL);  // A second Ctrl-C ends the process at once.
-}
 
 struct EvolveOptions {
   std::string config;
@@ -166,7 +159,7 @@ int runDiscovery(run::Discovery& discovery, const std::string& outDir, const std
               duration(r.seconds), duration(perGeneration * remaining));
           std::fflush(stdout);
         },
-        interrupted);
+        stopOnInterrupt());
   } catch (...) {
     stopStatus();
     if (!discovery.history().empty()) {
@@ -237,7 +230,7 @@ int evolve(const EvolveOptions& o) {
     };
   }
 #endif
-  std::signal(SIGINT, onInterrupt);
+  stopOnInterrupt();
   // One writer per results directory, held until the process ends (by an MPI run's master).
   std::optional<DirectoryLock> lock;
   if (!o.resume.empty()) {

@@ -9,8 +9,8 @@
 #include <memory>
 
 #include "command.hpp"
-#include "gpfd/env/params.hpp"
 #include "gpfd/env/simulate.hpp"
+#include "gpfd/util/number.hpp"
 #include "gpfd/expr/export.hpp"
 #include "gpfd/expr/features_file.hpp"
 #include "gpfd/expr/simplify.hpp"
@@ -88,7 +88,7 @@ std::vector<std::vector<double>> readStates(std::istream& in, const std::string&
     for (std::size_t i = 0; i < column.size(); ++i) {
       const std::string where = fmt::format("{}:{} column {}", source, number, variables[i]);
       if (column[i] >= fields.size()) throw InputError("the row is too short", where);
-      state.push_back(env::parseFiniteNumber(fields[column[i]], where));
+      state.push_back(parseNumber(fields[column[i]], where));
     }
     states.push_back(std::move(state));
   }

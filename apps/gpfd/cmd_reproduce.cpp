@@ -1,25 +1,17 @@
 // `gpfd reproduce`: the paper's experiments, figures and report in one command.
 #include <fmt/format.h>
-#include <sys/wait.h>
 
-#include <csignal>
-#include <cstdlib>
-#include <filesystem>
-
+#include "bench_jit.hpp"
 #include "command.hpp"
 #include "config_loading.hpp"
+#include "gpfd/jit/x86_compiler.hpp"
 #include "gpfd/run/reproduce.hpp"
 #include "gpfd/util/error.hpp"
 #include "gpfd/version.hpp"
+#include "interrupt.hpp"
 
 namespace gpfd::app {
 namespace {
-
-std::atomic<bool> stopRequested{false};
-extern "C" void onReproduceInterrupt(int) {
-  stopRequested.store(true);
-  std::signal(SIGINT, SIG_DFL);
-}
 
 struct ReproduceCli {
   std::vector<std::string> figures{"all"};
@@ -34,20 +26,16 @@ struct ReproduceCli {
   std::string baseline;
 };
 
-// Runs this same program's `bench jit` (its AOT reference lives in the tool).
+// The JIT benchmark of Figure 3, smaller when `quick`.
 void benchJit(const std::string& dir, bool quick) {
-  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
-  const std::string command = fmt::format("'{}' bench jit --out '{}' {} > '{}.log' 2>&1", self, dir,
-                                          quick ? "--calls 200000 --runs 3" : "", dir);
-  const int status = std::system(command.c_str());
-  // system() ignores SIGINT while the child runs: Ctrl-C ends the child only.
-  if ((WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) ||
-      (WIFEXITED(status) && WEXITSTATUS(status) == 130)) {
-    throw Interrupted("interrupted; run the same command again to continue", dir);
+  BenchJitArgs args;
+  args.out = dir;
+  args.print = false;
+  if (quick) {
+    args.calls = 200000;
+    args.runs = 3;
   }
-  if (status != 0 || !std::filesystem::exists(dir + "/jit.csv")) {
-    throw InputError("gpfd bench jit failed; see " + dir + ".log", dir);
-  }
+  runBenchJit(args);
 }
 
 int reproduceCommand(const ReproduceCli& c) {
@@ -63,7 +51,6 @@ int reproduceCommand(const ReproduceCli& c) {
   o.gpRuns = c.gpRuns;
   o.overrides = c.sets;
   o.baselineDir = c.baseline;
-  o.stop = &stopRequested;
   o.loadConfig = [](const std::string& name, const std::vector<std::string>& overrides) {
     return loadConfig(name, overrides);
   };
@@ -71,12 +58,15 @@ int reproduceCommand(const ReproduceCli& c) {
   std::vector<std::string> figures;
   for (const auto& f : c.figures) {
     if (f == "all") {
-      figures.insert(figures.end(), run::kFigures.begin(), run::kFigures.end());
+      for (const auto& figure : run::kFigures) {
+        // Figure 3 measures the JIT: a build without it leaves it out.
+        if (figure != "fig3" || jit::jitAvailable()) figures.push_back(figure);
+      }
     } else {
       figures.push_back(f);
     }
   }
-  std::signal(SIGINT, onReproduceInterrupt);
+  o.stop = &stopOnInterrupt();
   run::reproduce(figures, o);
   return 0;
 }

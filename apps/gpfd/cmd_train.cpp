@@ -3,20 +3,20 @@
 // DIR/curve.csv and DIR/weights.json (atomically, after training; nothing on bad input).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
 
 #include "command.hpp"
 #include "gpfd/env/environment.hpp"
-#include "gpfd/env/tetris.hpp"
 #include "gpfd/expr/features_file.hpp"
 #include "gpfd/expr/print.hpp"
 #include "gpfd/jit/compiled_feature_map.hpp"
-#include "gpfd/rl/learner_params.hpp"
-#include "gpfd/rl/tetris_afterstates.hpp"
+#include "gpfd/rl/learner.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
+#include "listings.hpp"
 #include "param_routing.hpp"
 
 namespace gpfd::app {
@@ -35,12 +35,6 @@ struct TrainArgs {
   bool quiet = false;
 };
 
-std::string joinNames(const std::vector<rl::LearnerParamSpec>& specs) {
-  std::string s;
-  for (const auto& spec : specs) s += (s.empty() ? "" : ", ") + spec.name;
-  return s;
-}
-
 std::string curveCsv(const rl::LearningCurve& curve) {
   std::string csv = "update,episodes,steps,mean_return\n";
   for (const auto& p : curve.points) {
@@ -51,64 +45,36 @@ std::string curveCsv(const rl::LearningCurve& curve) {
 
 int runTrain(const TrainArgs& args) {
   const auto& registry = env::Registry::global();
+  const auto& learners = rl::LearnerRegistry::global();
   const env::EnvInfo& info = registry.info(args.env);
-  const std::string learner =
-      args.learner.empty() ? (args.env == "tetris" ? "lpi" : "pg") : args.learner;
-  if (learner != "pg" && learner != "lpi") {
-    throw InputError(fmt::format("unknown learner '{}' (known: pg, lpi)", learner), "--learner");
-  }
+  const std::string learner = args.learner.empty() ? info.defaultLearner : args.learner;
+  const auto& learnerInfo = reportedAt(
+      "--learner", [&]() -> const auto& { return learners.info(learner); });
   if (!args.features.empty() && args.raw) {
     throw InputError("give either --features or --raw, not both", "--raw");
   }
 
-  // Route each k=v to the environment (its own parameter names) or to the learner.
-  env::Params envParams;
-  rl::PolicyGradientConfig pg;
-  rl::LambdaPolicyIterationConfig lpi;
-  std::string start;
-  bool biasGiven = false;
-  for (const auto& kv : args.params) {
-    const auto [key, value] = splitKeyValue(kv, "--param");
-    if (isEnvParam(info, key)) {
-      envParams[key] = value;
-      continue;
-    }
-    if (learner == "lpi" && key == "start") {
-      if (value != "zero" && value != "bertsekas") {
-        throw InputError(fmt::format("'{}' is not a start (zero|bertsekas)", value),
-                         "--param start");
-      }
-      start = value;
-      continue;
-    }
-    biasGiven = biasGiven || key == "bias";
-    const bool known = learner == "pg" ? rl::applyPolicyGradientParam(pg, key, value)
-                                       : rl::applyLambdaPolicyIterationParam(lpi, key, value);
-    if (!known) {
-      std::string envNames;
-      for (const auto& spec : info.params) envNames += (envNames.empty() ? "" : ", ") + spec.name;
-      throw InputError(
-          fmt::format("unknown parameter '{}' (the {} learner's: {}{}; {}'s: {})", key, learner,
-                      joinNames(learner == "pg" ? rl::policyGradientParamSpecs()
-                                                : rl::lambdaPolicyIterationParamSpecs()),
-                      learner == "lpi" ? ", start" : "", args.env, envNames),
-          "--param");
+  // Each k=v goes to the environment (its own parameter names) or to the learner.
+  const RoutedParams params = routeParams(args.params, info, "--param");
+  const auto learnerParamNames = paramNames(learnerInfo.params);
+  for (const auto& [key, value] : params.learner) {
+    if (std::find(learnerParamNames.begin(), learnerParamNames.end(), key) ==
+        learnerParamNames.end()) {
+      throw InputError(fmt::format("unknown parameter '{}' (the {} learner's: {}; {}'s: {})", key,
+                                   learner, fmt::join(learnerParamNames, ", "), args.env,
+                                   fmt::join(paramNames(info.params), ", ")),
+                       "--param");
     }
   }
-  const std::unique_ptr<env::Environment> environment = registry.make(args.env, envParams);
-  auto* tetris = dynamic_cast<env::Tetris*>(environment.get());
-  if (learner == "lpi" && tetris == nullptr) {
-    throw InputError("lambda-policy iteration needs an afterstate game (tetris)", "--learner");
-  }
-  if (learner == "pg" && tetris != nullptr) {
-    throw InputError("Tetris is learned with lambda-policy iteration (--learner lpi)", "--learner");
-  }
+  const std::unique_ptr<env::Environment> environment = registry.make(args.env, params.env);
+  reportedAt("--learner", [&] { learners.checkSuitable(learner, *environment); });
+  const std::unique_ptr<rl::Learner> trainer = learners.make(learner, params.learner);
 
   // The feature map: raw state variables, a features file, or both side by side.
   const std::size_t stateDim = environment->stateDim();
   const auto& stateNames = environment->stateNames();
   std::vector<std::string> featureNames;
-  std::shared_ptr<const jit::FeatureMap> map;
+  std::shared_ptr<const features::FeatureMap> map;
   std::string featuresDescription = "raw";
   if (!args.features.empty()) {
     const expr::FeaturesFile file = expr::readFeaturesFile(args.features, stateNames, args.env);
@@ -122,34 +88,16 @@ int runTrain(const TrainArgs& args) {
     }
     featuresDescription = args.features;
     if (args.addRaw) {
-      map = std::make_shared<jit::ConcatFeatureMap>(
-          std::vector<std::shared_ptr<const jit::FeatureMap>>{
-              map, std::make_shared<jit::RawFeatureMap>(stateDim)});
+      map = std::make_shared<features::ConcatFeatureMap>(
+          std::vector<std::shared_ptr<const features::FeatureMap>>{
+              map, std::make_shared<features::RawFeatureMap>(stateDim)});
       featureNames.insert(featureNames.end(), stateNames.begin(), stateNames.end());
       featuresDescription += " + raw";
     }
   } else {
-    map = std::make_shared<jit::RawFeatureMap>(stateDim);
+    map = std::make_shared<features::RawFeatureMap>(stateDim);
     featureNames = stateNames;
   }
-
-  const bool bertsekasState =
-      tetris != nullptr && tetris->config().state == env::TetrisFeatures::Bertsekas;
-  if (learner == "lpi") {
-    // The Bertsekas layout ends with a constant already: no second bias unless asked for.
-    if (bertsekasState && !biasGiven) lpi.features.bias = false;
-    const bool rawOnly = args.features.empty();
-    if (lpi.initialWeights.empty() && rawOnly &&
-        (start == "bertsekas" || (start.empty() && bertsekasState))) {
-      lpi.initialWeights =
-          rl::bertsekasIoffeStartWeights(tetris->config().cols, lpi.features.bias ? 1 : 0);
-    } else if (start == "bertsekas" && !rawOnly) {
-      throw InputError("the Bertsekas-Ioffe start needs the raw Tetris state (no --features)",
-                       "--param start");
-    }
-  }
-  const bool bias = learner == "pg" ? pg.features.bias : lpi.features.bias;
-  if (bias) featureNames.push_back("bias");
 
   // Check the output directory before spending time on training.
   const std::string outDir =
@@ -168,30 +116,13 @@ int runTrain(const TrainArgs& args) {
     fmt::print("{:>6} {:>9} {:>12} {:>14}\n", "update", "episodes", "steps", "mean_return");
   }
   Rng rng(args.seed);
-  rl::LearningCurve curve;
-  double evalMean = 0.0;
-  int evalCount = 0;
-  if (learner == "pg") {
-    pg.onPoint = progress;
-    curve = rl::trainPolicyGradient(*environment, *map, pg, rng);
-    if (args.eval > 0 && !curve.diverged) {
-      Rng evalRng(deriveSeed(args.seed, 1));
-      const auto e =
-          rl::evaluatePolicy(*environment, *map, curve.weights, pg, args.eval, true, evalRng);
-      evalMean = e.meanReturn;
-      evalCount = e.episodes;
-    }
-  } else {
-    lpi.onPoint = progress;
-    rl::TetrisAfterstateProblem problem(*tetris);
-    curve = rl::trainLambdaPolicyIteration(problem, *map, lpi, rng);
-    if (args.eval > 0 && !curve.diverged) {
-      Rng evalRng(deriveSeed(args.seed, 1));
-      const auto e = rl::playGreedy(problem, *map, curve.weights, lpi, args.eval, evalRng);
-      evalMean = e.meanReturn;
-      evalCount = e.games;
-    }
+  const rl::LearningCurve curve = trainer->train(*environment, *map, rng, progress);
+  rl::Evaluation evaluation;
+  if (args.eval > 0 && !curve.diverged) {
+    Rng evalRng(deriveSeed(args.seed, 1));
+    evaluation = trainer->evaluate(*environment, *map, curve.weights, args.eval, evalRng);
   }
+  if (curve.weights.bias) featureNames.push_back("bias");
 
   nlohmann::json weights;
   weights["env"] = args.env;
@@ -214,15 +145,20 @@ int runTrain(const TrainArgs& args) {
   weights["wall_seconds"] = curve.wallSeconds;
   weights["diverged"] = curve.diverged;
   if (curve.diverged) weights["diverged_reason"] = curve.divergedReason;
-  if (evalCount > 0)
-    weights["greedy_evaluation"] = {{"episodes", evalCount}, {"mean_return", evalMean}};
+  if (evaluation.episodes > 0) {
+    weights["greedy_evaluation"] = {{"episodes", evaluation.episodes},
+                                    {"mean_return", evaluation.meanReturn}};
+  }
   writeFileAtomically(outDir + "/curve.csv", curveCsv(curve));
   writeFileAtomically(outDir + "/weights.json", weights.dump(2) + "\n");
 
   if (!args.quiet) {
     fmt::print("# {} episodes, {} steps, {:.3f} s{}\n", curve.episodes, curve.steps,
                curve.wallSeconds, curve.diverged ? ", DIVERGED: " + curve.divergedReason : "");
-    if (evalCount > 0) fmt::print("# greedy evaluation: {:.6g} over {}\n", evalMean, evalCount);
+    if (evaluation.episodes > 0) {
+      fmt::print("# greedy evaluation: {:.6g} over {}\n", evaluation.meanReturn,
+                 evaluation.episodes);
+    }
     fmt::print("# wrote {}/curve.csv and {}/weights.json\n", outDir, outDir);
   }
   if (curve.diverged) {
@@ -243,10 +179,14 @@ const CommandRegistration registration{
       cmd->add_option("--features", args->features, "features file (default: the raw state)");
       cmd->add_flag("--raw", args->raw, "the raw state variables as features (the default)");
       cmd->add_flag("--add-raw", args->addRaw, "with --features: append the raw state variables");
-      cmd->add_option("--learner", args->learner, "pg | lpi (default: lpi for tetris, else pg)")
-          ->check(oneOf({"pg", "lpi"}));
+      cmd->add_option("--learner", args->learner,
+                      "learner (gpfd learners); default: the environment's (gpfd envs)");
       cmd->add_option("--param", args->params,
                       "k=v for the environment or the learner (repeatable)");
+      cmd->footer(
+          "Learner parameters (defaults, ranges and meanings: gpfd learners; the "
+          "environments': gpfd envs):\n" +
+          learnerParamSummary());
       cmd->add_option("--seed", args->seed, "seed of the run (default 1)")->check(seedValue());
       cmd->add_option("--out", args->out, "output directory (default gpfd-train-ENV-SEED)");
       cmd->add_option("--eval", args->eval, "greedy evaluation episodes after training")

@@ -10,6 +10,7 @@
 #include "command.hpp"
 #include "gpfd/util/error.hpp"
 #include "gpfd/version.hpp"
+#include "plugin_arguments.hpp"
 
 #ifdef GPFD_HAVE_MPI
 #include <optional>
@@ -39,9 +40,20 @@ int main(int argc, char** argv) {
     }
   }
 #endif
+  std::vector<char*> args;
+  try {
+    args = app::loadPluginArguments(argc, argv);
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.message().c_str());
+    return 2;
+  }
   CLI::App cli{"gpfd: feature discovery for reinforcement learning with genetic programming",
                "gpfd"};
   cli.set_version_flag("--version", std::string("gpfd ") + kVersion + " (" + kRevision + ")");
+  std::string pluginHelp;  // Taken out of the arguments above; declared here for --help.
+  cli.add_option("--plugin", pluginHelp,
+                 "Load environments and learners from a plug-in (a shared library; repeatable, "
+                 "anywhere on the line)");
   cli.require_subcommand(1);
 
   auto& all = app::commands();
@@ -59,7 +71,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   try {
-    cli.parse(argc, argv);
+    cli.parse(static_cast<int>(args.size()), args.data());
   } catch (const CLI::Success& e) {  // --help, --version.
     return cli.exit(e);
   } catch (const CLI::ParseError& e) {

@@ -35,7 +35,7 @@ inline nb::module_ numpy() { return nb::module_::import_("numpy"); }
 
 // Environment parameters given as Python keywords, as the text the registry reads: str as is,
 // bool as true/false, int and float in shortest round-trip form. TypeError for anything else.
-env::Params paramsFromDict(const nb::dict& values, const std::string& where);
+Params paramsFromDict(const nb::dict& values, const std::string& where);
 
 void bindFeatureSet(nb::module_& m);
 void bindEnvironments(nb::module_& m);

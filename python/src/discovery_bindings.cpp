@@ -21,6 +21,7 @@
 #include "gpfd/run/assessment.hpp"
 #include "gpfd/run/discovery.hpp"
 #include "gpfd/run/learning_task.hpp"
+#include "gpfd/rl/learner.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
 #include "gpfd/version.hpp"
@@ -204,15 +205,18 @@ run::ExperimentConfig assessConfig(const std::string& configName, const std::str
   } else {
     if (envName.empty()) throw InputError("give an environment or a config", "gpfd.assess");
     config.env = envName;
-    config.learner = envName == "tetris" ? "lpi" : "pg";
+    config.learner = env::Registry::global().info(envName).defaultLearner;
   }
-  const auto& info = env::Registry::global().info(config.env);
-  for (const auto& [key, value] : params) {
-    (app::isEnvParam(info, key) ? config.envParams : config.assessParams)[key] = value;
+  std::vector<std::string> assignments;
+  for (const auto& [key, value] : params) assignments.push_back(key + "=" + value);
+  const auto routed =
+      app::routeParams(assignments, env::Registry::global().info(config.env), "params");
+  for (const auto& [key, value] : routed.env) config.envParams[key] = value;
+  for (const auto& [key, value] : routed.learner) config.assessParams[key] = value;
+  if (budget > 0) {
+    const auto& learner = rl::LearnerRegistry::global().info(config.learner);
+    config.assessParams[learner.budgetParam] = std::to_string(budget);
   }
-  if (budget > 0)
-    config.assessParams[config.learner == "lpi" ? "iterations" : "updates"] =
-        std::to_string(budget);
   if (runs > 0) config.assessRuns = runs;
   config.seed = seed;
   run::validate(config);
@@ -228,7 +232,7 @@ nb::dict assess(const std::string& configName, const std::string& envName,
   const std::size_t dim = task.stateDim();
   std::vector<run::FeatureSet> sets;
   if (raw || !featureSets.empty()) {
-    sets.push_back({"original", std::make_shared<const jit::RawFeatureMap>(dim)});
+    sets.push_back({"original", std::make_shared<const features::RawFeatureMap>(dim)});
   }
   for (const FeatureSet* set : featureSets) {
     checkFor(*set, task);

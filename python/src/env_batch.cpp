@@ -31,7 +31,7 @@ Autoreset parseAutoreset(const std::string& name) {
                    "autoreset_mode");
 }
 
-EnvBatch::EnvBatch(const std::string& name, const env::Params& params, std::size_t n,
+EnvBatch::EnvBatch(const std::string& name, const Params& params, std::size_t n,
                    Autoreset autoreset)
     : rngs_(n), ended_(n, 0), autoreset_(autoreset) {
   if (n == 0) throw InputError("a batch needs at least one environment", "num_envs");

@@ -43,7 +43,7 @@ class EnvBatch {
  public:
   // InputError for an unknown environment or parameter, or an action space that cannot be driven
   // by numbers (a discrete space of several components other than Tetris).
-  EnvBatch(const std::string& name, const env::Params& params, std::size_t n, Autoreset autoreset);
+  EnvBatch(const std::string& name, const Params& params, std::size_t n, Autoreset autoreset);
   EnvBatch(const EnvBatch&) = delete;
   EnvBatch& operator=(const EnvBatch&) = delete;
 

@@ -5,7 +5,8 @@
 #include <nanobind/stl/vector.h>
 
 #include "bindings.hpp"
-#include "gpfd/env/params.hpp"
+#include "gpfd/util/number.hpp"
+#include "gpfd/util/params.hpp"
 #include "gpfd/util/error.hpp"
 #include "gpfd/version.hpp"
 
@@ -53,8 +54,8 @@ void bindRegistry(nb::module_& m) {
 
 }  // namespace
 
-env::Params paramsFromDict(const nb::dict& values, const std::string& where) {
-  env::Params params;
+Params paramsFromDict(const nb::dict& values, const std::string& where) {
+  Params params;
   for (auto [key, value] : values) {
     const std::string name = pyText(key);
     std::string text;
@@ -65,7 +66,7 @@ env::Params paramsFromDict(const nb::dict& values, const std::string& where) {
     } else if (PyIndex_Check(value.ptr())) {  // int, numpy integers
       text = pyText(nb::int_(value));
     } else if (PyFloat_Check(value.ptr()) || nb::hasattr(value, "__float__")) {
-      text = env::numberText(nb::cast<double>(nb::float_(value)));
+      text = numberText(nb::cast<double>(nb::float_(value)));
     } else {
       throw nb::type_error(
           fmt::format("{}: parameter '{}' must be a number, a bool or a string, not {}", where,

@@ -45,7 +45,7 @@ class PythonEnvironment final : public env::Environment {
   }
 
   std::string name() const override { return name_; }
-  env::Params params() const override { return {}; }
+  Params params() const override { return {}; }
   const std::vector<std::string>& stateNames() const override { return names_; }
   env::ActionSpace actionSpace() const override { return space_; }
 
@@ -98,7 +98,7 @@ void bindPythonEnvironments(nb::module_& m) {
         env::EnvInfo info;
         info.name = name;
         info.description = description;
-        info.make = [name](const env::Params&) -> std::unique_ptr<env::Environment> {
+        info.make = [name](const Params&) -> std::unique_ptr<env::Environment> {
           nb::gil_scoped_acquire gil;
           nb::object adapter = nb::module_::import_("gpfd.user_env").attr("make_adapter")(name);
           return std::make_unique<PythonEnvironment>(name, std::move(adapter));

@@ -7,13 +7,13 @@
 #include <numbers>
 
 #include "gpfd/env/angles.hpp"
-#include "gpfd/env/params.hpp"
+#include "gpfd/env/common_params.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::env {
 namespace {
 
-// Constants of BENCHMARKS.md (Gymnasium Acrobot-v1).
+// Constants of Gymnasium's Acrobot-v1 (docs/benchmarks.md).
 constexpr double kM1 = 1.0, kM2 = 1.0, kL1 = 1.0, kLc1 = 0.5, kLc2 = 0.5, kI1 = 1.0, kI2 = 1.0;
 constexpr double kG = 9.8;
 constexpr double kPi = std::numbers::pi;
@@ -21,44 +21,40 @@ constexpr double kMaxVel1 = 4 * kPi, kMaxVel2 = 9 * kPi;
 
 }  // namespace
 
-AcrobotConfig AcrobotConfig::fromParams(const Params& params) {
-  const ParamReader in("acrobot", params);
-  AcrobotConfig c;
-  c.dynamics =
-      in.choice("dynamics", "book", {"book", "nips"}) == "nips" ? Dynamics::Nips : Dynamics::Book;
-  c.integrator = integratorFromName(in.choice("integrator", "rk4", {"rk4", "euler"}));
-  c.dt = in.positive("dt", c.dt);
-  c.substeps = in.integer("substeps", c.substeps, 1, 1000000);
-  c.maxTorque = in.positive("max_torque", c.maxTorque);
-  c.discrete = in.choice("actions", "continuous", {"continuous", "discrete"}) == "discrete";
-  c.maxSteps = in.integer("max_steps", c.maxSteps, 0, 1000000000);
-  return c;
+const ParamTable<AcrobotConfig>& AcrobotConfig::table() {
+  using Dynamics = AcrobotConfig::Dynamics;
+  static const auto table = [] {
+    ParamTable<AcrobotConfig> t("acrobot");
+    t.choice(
+        "dynamics", [](auto& c) -> auto& { return c.dynamics; },
+        std::vector<std::pair<std::string, Dynamics>>{{"book", Dynamics::Book},
+                                                      {"nips", Dynamics::Nips}},
+        "book: Sutton & Barto's equations; nips: without the dth1^2 term in ddth2");
+    // Beyond these steps the velocities reach their clipping bounds within a step.
+    declareIntegration(
+        t, "rk4: Gymnasium's; euler: Sutton & Barto's, with dt=0.2 substeps=4",
+        "integration steps per control interval; angles wrapped and velocities clipped after each",
+        [](const AcrobotConfig& c) { return c.integrator == Integrator::Rk4 ? 0.2 : 0.05; },
+        "at most 0.2 s with rk4 (Gymnasium's step) and 0.05 s with euler (Sutton & Barto's)");
+    t.real(
+        "max_torque", [](auto& c) -> auto& { return c.maxTorque; }, 1e-3, 100.0,
+        "torque bound (continuous) or magnitude (discrete)");
+    declareActionKind(t,
+                      "continuous: tau in [-max_torque, max_torque], clipped; discrete: 0, 1, 2 "
+                      "= -1, 0, +1 x max_torque");
+    declareTimeLimit(
+        t, "max_steps", [](auto& c) -> auto& { return c.maxSteps; }, "steps");
+    return t;
+  }();
+  return table;
 }
 
-Params AcrobotConfig::toParams() const {
-  return {{"dynamics", dynamics == Dynamics::Nips ? "nips" : "book"},
-          {"integrator", integratorName(integrator)},
-          {"dt", numberText(dt)},
-          {"substeps", std::to_string(substeps)},
-          {"max_torque", numberText(maxTorque)},
-          {"actions", discrete ? "discrete" : "continuous"},
-          {"max_steps", std::to_string(maxSteps)}};
-}
-
-std::vector<ParamSpec> AcrobotConfig::paramSpecs() {
-  const AcrobotConfig d;
-  return {
-      {"dynamics", "book", "book (Sutton & Barto) | nips (without the dth1^2 term in ddth2)"},
-      {"integrator", "rk4", "rk4 (Gymnasium) | euler (Sutton & Barto: use with dt=0.2 substeps=4)"},
-      {"dt", numberText(d.dt), "control interval in seconds; the torque is held over it"},
-      {"substeps", std::to_string(d.substeps),
-       "integration steps per control interval; angles wrapped and velocities clipped after each"},
-      {"max_torque", numberText(d.maxTorque), "torque bound (continuous) or magnitude (discrete)"},
-      {"actions", "continuous",
-       "continuous (tau in [-max_torque, max_torque], clipped) | discrete (0,1,2 = -1,0,+1 x "
-       "max_torque)"},
-      {"max_steps", std::to_string(d.maxSteps), "time limit in steps (truncation); 0 = none"},
-  };
+EnvInfo Acrobot::info() {
+  return {"acrobot",
+          "two-link underactuated pendulum; swing the tip above the bar (Sutton & Barto; "
+          "Gymnasium Acrobot-v1)",
+          AcrobotConfig::table().specs(),
+          [](const Params& p) { return std::make_unique<Acrobot>(AcrobotConfig::fromParams(p)); }};
 }
 
 Acrobot::Acrobot(AcrobotConfig config) : config_(config) {}
@@ -116,6 +112,11 @@ Acrobot::State Acrobot::derivative(const State& s, double tau) const {
   const double ddth2 = numerator / (kM2 * kLc2 * kLc2 + kI2 - d2 * d2 / d1);
   const double ddth1 = -(d2 * ddth2 + phi1) / d1;
   return {dth1, dth2, ddth1, ddth2};
+}
+
+std::vector<StateRange> Acrobot::typicalStateRanges() const {
+  // Exact: the angles are wrapped, the velocities clipped (Gymnasium's bounds).
+  return {{-kPi, kPi}, {-kPi, kPi}, {-kMaxVel1, kMaxVel1}, {-kMaxVel2, kMaxVel2}};
 }
 
 bool Acrobot::terminal() const {

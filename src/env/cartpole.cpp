@@ -5,13 +5,13 @@
 #include <algorithm>
 #include <cmath>
 
-#include "gpfd/env/params.hpp"
+#include "gpfd/env/common_params.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::env {
 namespace {
 
-// Constants of BENCHMARKS.md (Gymnasium CartPole-v1).
+// Constants of Gymnasium's CartPole-v1 (docs/benchmarks.md).
 constexpr double kMassCart = 1.0, kMassPole = 0.1, kTotalMass = kMassCart + kMassPole;
 constexpr double kHalfLength = 0.5, kPoleMassLength = kMassPole * kHalfLength;
 constexpr double kXThreshold = 2.4;
@@ -19,43 +19,35 @@ constexpr double kThetaThreshold = 12 * 2 * 3.141592653589793 / 360;  // 0.20943
 
 }  // namespace
 
-CartPoleConfig CartPoleConfig::fromParams(const Params& params) {
-  const ParamReader in("cartpole", params);
-  CartPoleConfig c;
-  c.gravity = in.real("gravity", c.gravity, -1e6, 1e6);
-  c.integrator = integratorFromName(in.choice("integrator", "euler", {"euler", "rk4"}));
-  c.dt = in.positive("dt", c.dt);
-  c.substeps = in.integer("substeps", c.substeps, 1, 1000000);
-  c.maxForce = in.positive("max_force", c.maxForce);
-  c.discrete = in.choice("actions", "continuous", {"continuous", "discrete"}) == "discrete";
-  c.maxSteps = in.integer("max_steps", c.maxSteps, 0, 1000000000);
-  return c;
+const ParamTable<CartPoleConfig>& CartPoleConfig::table() {
+  static const auto table = [] {
+    ParamTable<CartPoleConfig> t("cartpole");
+    t.real(
+        "gravity", [](auto& c) -> auto& { return c.gravity; }, 0.0, 100.0,
+        "gravitational acceleration in m/s^2 (CLSquare: 9.81)");
+    // The pole's time scale is sqrt(l / g) ~ 0.2 s: longer steps no longer follow it.
+    declareIntegration(
+        t, "euler: Gymnasium's, every right-hand side from the old state; rk4",
+        "integration steps per control interval (CLSquare: rk4 with 10)",
+        [](const CartPoleConfig&) { return 0.05; }, "at most 0.05 s (Gymnasium's: 0.02 s)");
+    t.real(
+        "max_force", [](auto& c) -> auto& { return c.maxForce; }, 1e-3, 1000.0,
+        "force bound (continuous) or magnitude (discrete), N");
+    declareActionKind(t,
+                      "continuous: F in [-max_force, max_force], clipped; discrete: 0, 1 = "
+                      "-max_force, +max_force");
+    declareTimeLimit(
+        t, "max_steps", [](auto& c) -> auto& { return c.maxSteps; }, "steps");
+    return t;
+  }();
+  return table;
 }
 
-Params CartPoleConfig::toParams() const {
-  return {{"gravity", numberText(gravity)},
-          {"integrator", integratorName(integrator)},
-          {"dt", numberText(dt)},
-          {"substeps", std::to_string(substeps)},
-          {"max_force", numberText(maxForce)},
-          {"actions", discrete ? "discrete" : "continuous"},
-          {"max_steps", std::to_string(maxSteps)}};
-}
-
-std::vector<ParamSpec> CartPoleConfig::paramSpecs() {
-  const CartPoleConfig d;
-  return {
-      {"gravity", numberText(d.gravity), "gravitational acceleration in m/s^2 (CLSquare: 9.81)"},
-      {"integrator", "euler", "euler (Gymnasium, all right-hand sides from the old state) | rk4"},
-      {"dt", numberText(d.dt), "control interval in seconds; the force is held over it"},
-      {"substeps", std::to_string(d.substeps),
-       "integration steps per control interval (CLSquare: rk4 with 10)"},
-      {"max_force", numberText(d.maxForce), "force bound (continuous) or magnitude (discrete), N"},
-      {"actions", "continuous",
-       "continuous (F in [-max_force, max_force], clipped) | discrete (0,1 = "
-       "-max_force,+max_force)"},
-      {"max_steps", std::to_string(d.maxSteps), "time limit in steps (truncation); 0 = none"},
-  };
+EnvInfo CartPole::info() {
+  return {"cartpole", "pole balancing on a cart (Barto et al. 1983; Gymnasium CartPole-v1)",
+          CartPoleConfig::table().specs(), [](const Params& p) {
+            return std::make_unique<CartPole>(CartPoleConfig::fromParams(p));
+          }};
 }
 
 CartPole::CartPole(CartPoleConfig config) : config_(config) {}
@@ -104,6 +96,14 @@ CartPole::State CartPole::derivative(const State& s, double force) const {
                       (kHalfLength * (4.0 / 3.0 - kMassPole * (cosTh * cosTh) / kTotalMass));
   const double ddx = temp - kPoleMassLength * ddth * cosTh / kTotalMass;
   return {dx, ddx, dth, ddth};
+}
+
+std::vector<StateRange> CartPole::typicalStateRanges() const {
+  // x and th: the failure limits; dx and dth: seen within episodes under random forces.
+  return {{-kXThreshold, kXThreshold},
+          {-3.0, 3.0},
+          {-0.20943951023931953, 0.20943951023931953},
+          {-3.5, 3.5}};
 }
 
 bool CartPole::terminal() const {

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "gpfd/env/params.hpp"
 #include "gpfd/util/error.hpp"
+#include "gpfd/util/number.hpp"
 
 namespace gpfd::env {
 namespace {
@@ -55,7 +55,7 @@ std::vector<double> parseNumberList(const std::string& text, const std::string& 
     const std::size_t comma = text.find(',', start);
     const std::string field =
         text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    values.push_back(parseFiniteNumber(field, where));
+    values.push_back(parseNumber(field, where));
     if (comma == std::string::npos) break;
     start = comma + 1;
   }

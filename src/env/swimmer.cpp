@@ -4,54 +4,55 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "gpfd/env/angles.hpp"
-#include "gpfd/env/params.hpp"
+#include "gpfd/env/common_params.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::env {
 
-SwimmerConfig SwimmerConfig::fromParams(const Params& params) {
-  const ParamReader in("swimmer", params);
-  SwimmerConfig c;
-  c.segments = in.integer("segments", c.segments, 2, 1000);
-  c.integrator = integratorFromName(in.choice("integrator", "euler", {"euler", "rk4"}));
-  c.dt = in.positive("dt", c.dt);
-  c.substeps = in.integer("substeps", c.substeps, 1, 1000000);
-  c.maxTorque = in.positive("max_torque", c.maxTorque);
-  c.horizon = in.integer("horizon", c.horizon, 0, 1000000000);
-  c.viscosity = in.real("viscosity", c.viscosity, 0.0, 1e9);
-  c.startAngleNoise = in.real("start_angle_noise", c.startAngleNoise, 0.0, 3.141592653589793);
-  return c;
+const ParamTable<SwimmerConfig>& SwimmerConfig::table() {
+  static const auto table = [] {
+    ParamTable<SwimmerConfig> t("swimmer");
+    t.integer(
+        "segments", [](auto& c) -> auto& { return c.segments; }, 2, 100,
+        "number of segments n (2n + 2 state variables)");
+    // The explicit integrators follow the dynamics only while the step resolves the fastest mode,
+    // which speeds up with the number of segments and the viscosity; without drag nothing damps
+    // the energy that explicit Euler adds. The bounds are empirical, about half of where
+    // random-torque runs blow up (docs/environments.md, "Swimmer integration").
+    declareIntegration(
+        t, "euler: Coulom's; rk4",
+        "integration steps per control interval; angles wrapped after each",
+        [](const SwimmerConfig& c) {
+          const double bound = c.integrator == Integrator::Rk4 ? 0.3
+                               : c.viscosity >= 1.0            ? 0.2
+                                                               : 0.05;
+          return bound / (c.segments * std::max(1.0, c.viscosity / 10.0));
+        },
+        "h * segments * max(1, viscosity / 10) must be at most 0.2 with euler (0.05 below "
+        "viscosity 1) and 0.3 with rk4");
+    t.real(
+        "max_torque", [](auto& c) -> auto& { return c.maxTorque; }, 1e-3, 100.0,
+        "joint torque bound: u_j in [-max_torque, max_torque]");
+    declareTimeLimit(
+        t, "horizon", [](auto& c) -> auto& { return c.horizon; }, "steps");
+    t.real(
+         "viscosity", [](auto& c) -> auto& { return c.viscosity; }, 0.0, 100.0,
+         "fluid viscosity k of the normal drag")
+        .real(
+            "start_angle_noise", [](auto& c) -> auto& { return c.startAngleNoise; }, 0.0,
+            std::numbers::pi, "reset: at rest, each th_i ~ U(-a, a) (a = this value)");
+    return t;
+  }();
+  return table;
 }
 
-Params SwimmerConfig::toParams() const {
-  return {{"segments", std::to_string(segments)},
-          {"integrator", integratorName(integrator)},
-          {"dt", numberText(dt)},
-          {"substeps", std::to_string(substeps)},
-          {"max_torque", numberText(maxTorque)},
-          {"horizon", std::to_string(horizon)},
-          {"viscosity", numberText(viscosity)},
-          {"start_angle_noise", numberText(startAngleNoise)}};
-}
-
-std::vector<ParamSpec> SwimmerConfig::paramSpecs() {
-  const SwimmerConfig d;
-  return {
-      {"segments", std::to_string(d.segments),
-       "number of segments n >= 2 (2n + 2 state variables)"},
-      {"integrator", "euler", "euler (Coulom) | rk4"},
-      {"dt", numberText(d.dt), "control interval in seconds; the torques are held over it"},
-      {"substeps", std::to_string(d.substeps),
-       "integration steps per control interval; angles wrapped after each"},
-      {"max_torque", numberText(d.maxTorque),
-       "joint torque bound: u_j in [-max_torque, max_torque]"},
-      {"horizon", std::to_string(d.horizon), "time limit in steps (truncation); 0 = none"},
-      {"viscosity", numberText(d.viscosity), "fluid viscosity k of the normal drag"},
-      {"start_angle_noise", numberText(d.startAngleNoise),
-       "reset: at rest, each th_i ~ U(-a, a) (a = this value)"},
-  };
+EnvInfo Swimmer::info() {
+  return {"swimmer", "n-segment swimmer in a viscous fluid; swim along x (Coulom 2002, appendix B)",
+          SwimmerConfig::table().specs(),
+          [](const Params& p) { return std::make_unique<Swimmer>(SwimmerConfig::fromParams(p)); }};
 }
 
 Swimmer::Swimmer(SwimmerConfig config) : config_(config), n_(config.segments) {
@@ -120,6 +121,17 @@ Swimmer::Swimmer(SwimmerConfig config) : config_(config), n_(config.segments) {
   lu_ = Eigen::PartialPivLU<Eigen::MatrixXd>(n_);
   for (auto* v : {&cos_, &sin_, &force_x_, &force_y_}) v->assign(n, 0.0);
   for (auto* v : {&k1_, &k2_, &k3_, &k4_, &tmp_}) v->assign(2 * n + 2, 0.0);
+}
+
+std::vector<StateRange> Swimmer::typicalStateRanges() const {
+  // Angles are wrapped into [-pi, pi]; velocities: seen under random torques (|u| <= 5).
+  constexpr double pi = std::numbers::pi;
+  std::vector<StateRange> ranges{{-1.0, 1.0}, {-1.0, 1.0}};
+  for (int i = 0; i < n_; ++i) {
+    ranges.push_back({-pi, pi});
+    ranges.push_back({-5.0, 5.0});
+  }
+  return ranges;
 }
 
 ActionSpace Swimmer::actionSpace() const {

@@ -5,40 +5,38 @@
 #include <algorithm>
 #include <cmath>
 
-#include "gpfd/env/params.hpp"
+#include "gpfd/env/common_params.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::env {
 
-TetrisConfig TetrisConfig::fromParams(const Params& params) {
-  const ParamReader in("tetris", params);
-  TetrisConfig c;
-  c.rows = in.integer("rows", c.rows, 4, TetrisBoard::kMaxRows);
-  c.cols = in.integer("cols", c.cols, 4, TetrisBoard::kMaxCols);
-  c.state = in.choice("state", "paper", {"paper", "bertsekas"}) == "bertsekas"
-                ? TetrisFeatures::Bertsekas
-                : TetrisFeatures::Paper;
-  c.maxSteps = in.integer("max_steps", c.maxSteps, 0, 1000000000);
-  return c;
+const ParamTable<TetrisConfig>& TetrisConfig::table() {
+  static const auto table = [] {
+    ParamTable<TetrisConfig> t("tetris");
+    t.integer(
+         "rows", [](auto& c) -> auto& { return c.rows; }, 4, TetrisBoard::kMaxRows,
+         "board height (the paper: 12; the literature: 20)")
+        .integer(
+            "cols", [](auto& c) -> auto& { return c.cols; }, 4, TetrisBoard::kMaxCols,
+            "board width (the paper: 8; the literature: 10)")
+        .choice(
+            "state", [](auto& c) -> auto& { return c.state; },
+            std::vector<std::pair<std::string, TetrisFeatures>>{
+                {"paper", TetrisFeatures::Paper}, {"bertsekas", TetrisFeatures::Bertsekas}},
+            "paper: heights, |differences|, max height, holes, piece 0-6 = IOTSZLJ; bertsekas: "
+            "the same with a constant 1 instead of the piece");
+    declareTimeLimit(
+        t, "max_steps", [](auto& c) -> auto& { return c.maxSteps; }, "pieces");
+    return t;
+  }();
+  return table;
 }
 
-Params TetrisConfig::toParams() const {
-  return {{"rows", std::to_string(rows)},
-          {"cols", std::to_string(cols)},
-          {"state", state == TetrisFeatures::Bertsekas ? "bertsekas" : "paper"},
-          {"max_steps", std::to_string(maxSteps)}};
-}
-
-std::vector<ParamSpec> TetrisConfig::paramSpecs() {
-  const TetrisConfig d;
-  return {
-      {"rows", std::to_string(d.rows), "board height (the paper: 12; the literature: 20)"},
-      {"cols", std::to_string(d.cols), "board width (the paper: 8; the literature: 10)"},
-      {"state", "paper",
-       "paper (heights, |differences|, max height, holes, piece 0-6 = IOTSZLJ) | bertsekas (the "
-       "same with a constant 1 instead of the piece)"},
-      {"max_steps", std::to_string(d.maxSteps), "time limit in pieces (truncation); 0 = none"},
-  };
+EnvInfo Tetris::info() {
+  return {"tetris", "Tetris with the 7 tetrominoes; reward = rows removed (the paper: 12 x 8)",
+          TetrisConfig::table().specs(),
+          [](const Params& p) { return std::make_unique<Tetris>(TetrisConfig::fromParams(p)); },
+          "lpi"};
 }
 
 Tetris::Tetris(TetrisConfig config) : config_(config), board_(config.rows, config.cols) {
@@ -220,6 +218,37 @@ void Tetris::afterstates(TetrisAfterstates& out) const {
       after.features(config_.state, piece_, out.features.data() + i * dim);
     }
   }
+}
+
+}  // namespace gpfd::env
+
+namespace gpfd::env {
+
+AfterstateView Tetris::candidates() {
+  if (gameOver_) return {};
+  afterstates(afterstates_);
+  const std::size_t n = afterstates_.placements.size();
+  rewards_.resize(n);
+  ends_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    rewards_[i] = afterstates_.placements[i].rowsRemoved;
+    ends_[i] = afterstates_.placements[i].gameOver ? 1 : 0;
+  }
+  return {n, afterstates_.features.data(), rewards_.data(), ends_.data()};
+}
+
+StepResult Tetris::play(std::size_t index) {
+  const TetrisPlacement& p = afterstates_.placements.at(index);
+  const double action[2] = {static_cast<double>(p.orientation), static_cast<double>(p.column)};
+  return step(action);
+}
+
+std::vector<double> Tetris::knownValueWeights() const {
+  if (config_.state != TetrisFeatures::Bertsekas) return {};
+  std::vector<double> w(names_.size(), 0.0);
+  w[static_cast<std::size_t>(2 * config_.cols - 1)] = -10.0;  // Max height.
+  w[static_cast<std::size_t>(2 * config_.cols)] = -1.0;       // Holes.
+  return w;
 }
 
 }  // namespace gpfd::env

@@ -3,6 +3,10 @@
 #include <fmt/format.h>
 
 #include <cctype>
+#include <string_view>
+#include <utility>
+
+#include "gpfd/expr/trig.hpp"
 
 #include "gpfd/util/error.hpp"
 
@@ -87,9 +91,10 @@ std::string latex(TreeView t, std::size_t i, const VariableNames& names, int par
   }
 }
 
+// The preambles below name gpfd's constants as @NAME@; preamble() writes their exact values.
 constexpr const char* kCPreamble =
     R"(/* Features discovered by gpfd. Protected semantics (gpfd docs/expressions.md): every value
-   is finite; overflow saturates to +-DBL_MAX; a / b = 1 when |b| <= 1e-10; sqrt and log take |a|;
+   is finite; overflow saturates to +-DBL_MAX; a / b = 1 when |b| <= @NEAR_ZERO@; sqrt and log take |a|;
    log is 0 near 0; inputs: NaN -> 0, +-inf -> +-DBL_MAX. Compile with -fno-builtin (so that the
    compiler does not fold sin/cos/... of constants with its own, differently rounded, library) and
    without -ffast-math, and the values are bit-identical to gpfd's. */
@@ -104,39 +109,39 @@ static double gpfd_in(double x) { return x == x ? gpfd_sat(x) : 0.0; }
 static double gpfd_add(double a, double b) { return gpfd_sat(a + b); }
 static double gpfd_sub(double a, double b) { return gpfd_sat(a - b); }
 static double gpfd_mul(double a, double b) { return gpfd_sat(a * b); }
-static double gpfd_div(double a, double b) { return fabs(b) > 1e-10 ? gpfd_sat(a / b) : 1.0; }
+static double gpfd_div(double a, double b) { return fabs(b) > @NEAR_ZERO@ ? gpfd_sat(a / b) : 1.0; }
 static double gpfd_absdiff(double a, double b) { return gpfd_sat(fabs(a - b)); }
 /* gpfd's sin and cos (gpfd include/gpfd/expr/trig.hpp): Cody-Waite reduction by pi/2 in three
-   parts and fdlibm's kernel polynomials; the C library only for |a| > 1e6. */
+   parts and fdlibm's kernel polynomials; the C library only for |a| > @LARGE@. */
 static double gpfd_trig(double a, unsigned offset) {
   double shifted, k, r1, w, r2, tail, r, y, z, v, p, value;
   unsigned long long bits;
   unsigned q;
-  if (fabs(a) < 0x1p-27) return offset == 0 ? a : 1.0;
-  if (!(fabs(a) <= 1.0e6)) return offset == 0 ? sin(a) : cos(a);
-  shifted = a * 6.36619772367581382433e-01 + 0x1.8p52;
+  if (fabs(a) < @TINY@) return offset == 0 ? a : 1.0;
+  if (!(fabs(a) <= @LARGE@)) return offset == 0 ? sin(a) : cos(a);
+  shifted = a * @TWO_OVER_PI@ + @ROUND_MAGIC@;
   memcpy(&bits, &shifted, sizeof bits);
   q = (unsigned)((bits + offset) & 3u);
-  k = (shifted - 0x1.8p52) + 0.0;
-  r1 = a - k * 1.57079632673412561417e+00;
-  w = k * 6.07710050630396597660e-11;
+  k = (shifted - @ROUND_MAGIC@) + 0.0;
+  r1 = a - k * @PIO2_1@;
+  w = k * @PIO2_2@;
   r2 = r1 - w;
-  tail = ((r1 - r2) - w) - k * 2.02226624879595063154e-21;
+  tail = ((r1 - r2) - w) - k * @PIO2_3@;
   r = r2 + tail;
   y = (r2 - r) + tail;
   z = r * r;
   if (q & 1u) {
-    p = z * (4.16666666666666019037e-02 + z * (-1.38888888888741095749e-03 +
-        z * (2.48015872894767294178e-05 + z * (-2.75573143513906633035e-07 +
-        z * (2.08757232129817482790e-09 + z * -1.13596475577881948265e-11)))));
+    p = z * (@C1@ + z * (@C2@ +
+        z * (@C3@ + z * (@C4@ +
+        z * (@C5@ + z * @C6@)))));
     w = 1.0 - 0.5 * z;
     value = w + (((1.0 - w) - 0.5 * z) + (z * p - r * y));
   } else {
     v = z * r;
-    p = 8.33333333332248946124e-03 + z * (-1.98412698298579493134e-04 +
-        z * (2.75573137070700676789e-06 + z * (-2.50507602534068634195e-08 +
-        z * 1.58969099521155010221e-10)));
-    value = r - ((z * (0.5 * y - v * p) - y) - v * -1.66666666666666324348e-01);
+    p = @S2@ + z * (@S3@ +
+        z * (@S4@ + z * (@S5@ +
+        z * @S6@)));
+    value = r - ((z * (0.5 * y - v * p) - y) - v * @S1@);
   }
   return (q & 2u) ? -value : value;
 }
@@ -147,15 +152,15 @@ static double gpfd_sqrt(double a) { return sqrt(fabs(a)); }
 static double gpfd_neg(double a) { return -a; }
 static double gpfd_abs(double a) { return fabs(a); }
 static double gpfd_exp(double a) { return gpfd_sat(exp(a)); }
-static double gpfd_log(double a) { return fabs(a) > 1e-10 ? log(fabs(a)) : 0.0; }
+static double gpfd_log(double a) { return fabs(a) > @NEAR_ZERO@ ? log(fabs(a)) : 0.0; }
 static double gpfd_square(double a) { return gpfd_sat(a * a); }
 )";
 
 constexpr const char* kPythonPreamble =
     R"("""Features discovered by gpfd, with gpfd's protected semantics (docs/expressions.md):
-every value is finite; overflow saturates to +-DBL_MAX; a / b = 1 when |b| <= 1e-10; sqrt and log
+every value is finite; overflow saturates to +-DBL_MAX; a / b = 1 when |b| <= @NEAR_ZERO@; sqrt and log
 take |a|; log is 0 near 0; inputs: NaN -> 0, +-inf -> +-DBL_MAX. Arithmetic, sin and cos are
-bit-identical to gpfd's (for |a| <= 1e6); tanh, exp and log are NumPy's and may differ from C's
+bit-identical to gpfd's (for |a| <= @LARGE@); tanh, exp and log are NumPy's and may differ from C's
 libm in the last bit."""
 import numpy as np
 
@@ -186,7 +191,7 @@ def gpfd_square(a): return _sat(np.multiply(a, a))
 
 def gpfd_div(a, b):
     with np.errstate(all="ignore"):
-        return np.where(np.abs(b) > 1e-10, _sat(np.divide(a, b)), 1.0)
+        return np.where(np.abs(b) > @NEAR_ZERO@, _sat(np.divide(a, b)), 1.0)
 
 
 def gpfd_exp(a):
@@ -196,37 +201,37 @@ def gpfd_exp(a):
 
 def gpfd_log(a):
     with np.errstate(divide="ignore"):
-        return np.where(np.abs(a) > 1e-10, np.log(np.abs(a)), 0.0)
+        return np.where(np.abs(a) > @NEAR_ZERO@, np.log(np.abs(a)), 0.0)
 
 
 def _trig(a, offset):
     """gpfd's sin (offset 0) and cos (offset 1), include/gpfd/expr/trig.hpp, bit for bit."""
     a = np.asarray(a, dtype=np.float64)
-    shifted = a * 6.36619772367581382433e-01 + 6755399441055744.0
+    shifted = a * @TWO_OVER_PI@ + @ROUND_MAGIC@
     q = (shifted.view(np.uint64) + np.uint64(offset)) & np.uint64(3)
-    k = (shifted - 6755399441055744.0) + 0.0
-    r1 = a - k * 1.57079632673412561417e+00
-    w = k * 6.07710050630396597660e-11
+    k = (shifted - @ROUND_MAGIC@) + 0.0
+    r1 = a - k * @PIO2_1@
+    w = k * @PIO2_2@
     r2 = r1 - w
-    tail = ((r1 - r2) - w) - k * 2.02226624879595063154e-21
+    tail = ((r1 - r2) - w) - k * @PIO2_3@
     r = r2 + tail
     y = (r2 - r) + tail
     z = r * r
     v = z * r
-    p = 8.33333333332248946124e-03 + z * (-1.98412698298579493134e-04 + z * (
-        2.75573137070700676789e-06 + z * (-2.50507602534068634195e-08 + z * 1.58969099521155010221e-10)))
-    sin_r = r - ((z * (0.5 * y - v * p) - y) - v * -1.66666666666666324348e-01)
-    c = z * (4.16666666666666019037e-02 + z * (-1.38888888888741095749e-03 + z * (
-        2.48015872894767294178e-05 + z * (-2.75573143513906633035e-07 + z * (
-            2.08757232129817482790e-09 + z * -1.13596475577881948265e-11)))))
+    p = @S2@ + z * (@S3@ + z * (
+        @S4@ + z * (@S5@ + z * @S6@)))
+    sin_r = r - ((z * (0.5 * y - v * p) - y) - v * @S1@)
+    c = z * (@C1@ + z * (@C2@ + z * (
+        @C3@ + z * (@C4@ + z * (
+            @C5@ + z * @C6@)))))
     cw = 1.0 - 0.5 * z
     cos_r = cw + (((1.0 - cw) - 0.5 * z) + (z * c - r * y))
     value = np.where((q & np.uint64(1)) == 1, cos_r, sin_r)
     value = np.where((q & np.uint64(2)) == 2, -value, value)
-    large = ~(np.abs(a) <= 1.0e6)
+    large = ~(np.abs(a) <= @LARGE@)
     if np.any(large):
         value = np.where(large, np.sin(a) if offset == 0 else np.cos(a), value)
-    return np.where(np.abs(a) < 2.0 ** -27, a if offset == 0 else 1.0, value)
+    return np.where(np.abs(a) < @TINY@, a if offset == 0 else 1.0, value)
 
 
 def gpfd_sin(a): return _trig(a, 0)
@@ -234,10 +239,53 @@ def gpfd_cos(a): return _trig(a, 1)
 
 )";
 
+// A double as a C and Python literal that reads back exactly (shortest round trip, with a
+// decimal point so that it is a floating-point literal in both languages).
+std::string literal(double value) {
+  std::string text = fmt::format("{}", value);
+  if (text.find_first_of(".e") == std::string::npos) text += ".0";
+  return text;
+}
+
+// The preamble with every @NAME@ replaced by the value of the constant it names.
+std::string preamble(std::string text) {
+  using namespace trig;
+  const std::pair<const char*, double> constants[] = {
+      {"@NEAR_ZERO@", protect::kNearZero},
+      {"@TINY@", kTiny},
+      {"@LARGE@", kLargeArgument},
+      {"@ROUND_MAGIC@", kRoundMagic},
+      {"@TWO_OVER_PI@", kTwoOverPi},
+      {"@PIO2_1@", kPio2Part1},
+      {"@PIO2_2@", kPio2Part2},
+      {"@PIO2_3@", kPio2Part3},
+      {"@S1@", kS1},
+      {"@S2@", kS2},
+      {"@S3@", kS3},
+      {"@S4@", kS4},
+      {"@S5@", kS5},
+      {"@S6@", kS6},
+      {"@C1@", kC1},
+      {"@C2@", kC2},
+      {"@C3@", kC3},
+      {"@C4@", kC4},
+      {"@C5@", kC5},
+      {"@C6@", kC6},
+  };
+  for (const auto& [name, value] : constants) {
+    const std::string replacement = literal(value);
+    for (std::size_t at = text.find(name); at != std::string::npos;
+         at = text.find(name, at + replacement.size())) {
+      text.replace(at, std::string_view(name).size(), replacement);
+    }
+  }
+  return text;
+}
+
 }  // namespace
 
 std::string exportC(const Genome& genome, const VariableNames& names) {
-  std::string out = kCPreamble;
+  std::string out = preamble(kCPreamble);
   out +=
       fmt::format("\n/* {} features of {} state variables:", genome.featureCount(), names.size());
   for (std::size_t i = 0; i < names.size(); ++i) out += fmt::format(" s[{}] = {};", i, names[i]);
@@ -252,7 +300,7 @@ std::string exportC(const Genome& genome, const VariableNames& names) {
 }
 
 std::string exportPython(const Genome& genome, const VariableNames& names) {
-  std::string out = kPythonPreamble;
+  std::string out = preamble(kPythonPreamble);
   out += "\ndef features(s):\n    \"\"\"s[..., i] is state variable i:";
   for (std::size_t i = 0; i < names.size(); ++i) out += fmt::format(" {}={}", i, names[i]);
   out += fmt::format(

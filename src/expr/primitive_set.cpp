@@ -15,10 +15,6 @@ std::optional<Op> opFromName(std::string_view name) {
   return std::nullopt;
 }
 
-std::vector<std::string> PrimitiveSet::builtinNames() {
-  return {"control", "tetris", "arithmetic", "all"};
-}
-
 PrimitiveSet PrimitiveSet::named(const std::string& spec) {
   PrimitiveSet set;
   set.name = spec;

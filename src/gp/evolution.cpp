@@ -41,12 +41,6 @@ void validate(const GpConfig& c) {
           "finite and non-negative");
 }
 
-const char* operatorName(Operator op) {
-  static const char* names[] = {"subtree_crossover", "feature_list_crossover", "node_mutation",
-                                "tree_mutation", "shrinkage"};
-  return names[static_cast<int>(op)];
-}
-
 std::vector<double> operatorProbabilities(const GpConfig& c) {
   const double mutation = 1.0 - c.crossoverRate;
   const double weights = c.nodeMutationWeight + c.treeMutationWeight + c.shrinkageWeight;

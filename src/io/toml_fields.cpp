@@ -151,6 +151,20 @@ void TomlReader::read(const std::string& section, const std::string& key,
   out = values;
 }
 
+void TomlReader::read(const std::string& section, const std::string& key,
+                      std::vector<std::string>& out) {
+  const toml::node* node = find(section, key);
+  if (node == nullptr) return;
+  const toml::array* array = node->as_array();
+  if (array == nullptr) fail(section, key, "must be an array of strings");
+  std::vector<std::string> values;
+  for (const auto& element : *array) {
+    if (!element.is_string()) fail(section, key, "must be an array of strings");
+    values.push_back(*element.value<std::string>());
+  }
+  out = values;
+}
+
 void TomlReader::readParams(const std::string& section, std::map<std::string, std::string>& out) {
   const std::size_t dot = section.rfind('.');
   const toml::node* node = dot == std::string::npos
@@ -228,6 +242,12 @@ void TomlWriter::write(const std::string& section, const std::string& key,
                        const std::vector<double>& value) {
   toml::array array;
   for (double v : value) array.push_back(v);
+  table(section).insert_or_assign(key, array);
+}
+void TomlWriter::write(const std::string& section, const std::string& key,
+                       const std::vector<std::string>& value) {
+  toml::array array;
+  for (const auto& v : value) array.push_back(v);
   table(section).insert_or_assign(key, array);
 }
 void TomlWriter::writeParams(const std::string& section,

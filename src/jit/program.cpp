@@ -12,10 +12,6 @@ namespace {
 
 using expr::Op;
 
-bool isCall(Op op) {
-  return op == Op::Sin || op == Op::Cos || op == Op::Exp || op == Op::Log || op == Op::Tanh;
-}
-
 std::uint64_t bits(double x) { return std::bit_cast<std::uint64_t>(x); }
 
 // Builds the instruction list with value numbering: an open-addressing table maps each
@@ -173,7 +169,7 @@ void checkGenome(const expr::Genome& genome) {
 
 bool Program::hasCalls() const {
   for (const Instr& in : code) {
-    if (isCall(in.op)) return true;
+    if (expr::isCall(in.op)) return true;
   }
   return false;
 }

@@ -390,15 +390,10 @@ class Emitter {
         case Op::Var:
           variable(v, in.var);
           break;
-        case Op::Sin:
-        case Op::Cos:
-        case Op::Exp:
-        case Op::Log:
-        case Op::Tanh:
-          call(v, in);
-          break;
         default:
-          if (expr::arity(in.op) == 1) {
+          if (expr::isCall(in.op)) {
+            call(v, in);
+          } else if (expr::arity(in.op) == 1) {
             unary(v, in);
           } else {
             binary(v, in);
@@ -737,15 +732,12 @@ bool jitUsesDualMapping() { return runtime().dualMapping; }
 NativeCode compileScalar(const Program& program) { return compile(program, false); }
 NativeCode compileBatch(const Program& program) { return compile(program, true); }
 
-#else  // No JIT in this build.
+#else  // No JIT in this build (GPFD_WITH_JIT=OFF, or not x86-64): the interpreter runs everything.
 
 NativeCode::~NativeCode() = default;
 bool jitAvailable() { return false; }
-bool hostHasAvx() {
-  static const bool has = asmjit::CpuInfo::host().hasFeature(asmjit::CpuFeatures::X86::kAVX);
-  return has;
-}
-
+// Without the JIT nothing runs AVX code, so the host's features do not matter.
+bool hostHasAvx() { return false; }
 bool hostHasAvx2() { return false; }
 bool jitUsesDualMapping() { return false; }
 NativeCode compileScalar(const Program&) { throw CompileError("built without the JIT"); }

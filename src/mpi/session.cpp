@@ -37,11 +37,12 @@ Session::Session(int& argc, char**& argv) {
   MPI_Comm node = MPI_COMM_NULL;
   MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
   if (node != MPI_COMM_NULL) {
-    MPI_Comm_size(node, &ranksOnNode_);
+    int ranksOnNode = 1;
+    MPI_Comm_size(node, &ranksOnNode);
     int masterHere = rank_ == 0 ? 1 : 0;
     int masters = 0;
     MPI_Allreduce(&masterHere, &masters, 1, MPI_INT, MPI_SUM, node);
-    workersOnNode_ = ranksOnNode_ - masters;
+    workersOnNode_ = ranksOnNode - masters;
     MPI_Comm_free(&node);
   }
   char name[MPI_MAX_PROCESSOR_NAME] = {};

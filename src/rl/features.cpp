@@ -4,7 +4,7 @@
 
 namespace gpfd::rl {
 
-FeaturePipeline::FeaturePipeline(const jit::FeatureMap& map, const FeatureOptions& options)
+FeaturePipeline::FeaturePipeline(const features::FeatureMap& map, const FeatureOptions& options)
     : map_(&map),
       options_(options),
       raw_(map.outputDim()),

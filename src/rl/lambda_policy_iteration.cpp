@@ -53,7 +53,7 @@ void LeastSquaresAccumulator::clear() {
 
 namespace {
 
-void checkInputs(const AfterstateProblem& problem, const jit::FeatureMap& map,
+void checkInputs(const AfterstateProblem& problem, const features::FeatureMap& map,
                  const LambdaPolicyIterationConfig& config, std::size_t dim) {
   if (map.inputDim() != problem.stateDim()) {
     throw InputError("the feature map reads " + std::to_string(map.inputDim()) +
@@ -166,7 +166,8 @@ GameOutcome playGame(AfterstateProblem& problem, FeaturePipeline& features,
 
 }  // namespace
 
-LearningCurve trainLambdaPolicyIteration(AfterstateProblem& problem, const jit::FeatureMap& map,
+LearningCurve trainLambdaPolicyIteration(AfterstateProblem& problem,
+                                         const features::FeatureMap& map,
                                          const LambdaPolicyIterationConfig& config, Rng& rng) {
   const auto start = std::chrono::steady_clock::now();
   FeaturePipeline features(map, config.features);
@@ -234,7 +235,7 @@ LearningCurve trainLambdaPolicyIteration(AfterstateProblem& problem, const jit::
   return curve;
 }
 
-GreedyPlayResult playGreedy(AfterstateProblem& problem, const jit::FeatureMap& map,
+GreedyPlayResult playGreedy(AfterstateProblem& problem, const features::FeatureMap& map,
                             const LinearWeights& weights, const LambdaPolicyIterationConfig& config,
                             int games, Rng& rng) {
   FeaturePipeline features(map, config.features);

@@ -24,7 +24,7 @@ struct Workspace {
   Eigen::VectorXd eligibility;
 };
 
-void checkDimensions(const env::Environment& env, const jit::FeatureMap& map) {
+void checkDimensions(const env::Environment& env, const features::FeatureMap& map) {
   if (map.inputDim() != env.stateDim()) {
     throw InputError("the feature map reads " + std::to_string(map.inputDim()) +
                          " state variables but " + env.name() + " has " +
@@ -82,7 +82,7 @@ void exportWeights(const LinearPolicy& policy, const FeaturePipeline& features,
 
 }  // namespace
 
-LearningCurve trainPolicyGradient(env::Environment& env, const jit::FeatureMap& map,
+LearningCurve trainPolicyGradient(env::Environment& env, const features::FeatureMap& map,
                                   const PolicyGradientConfig& config, Rng& rng) {
   checkDimensions(env, map);
   if (config.updates < 0 || config.episodesPerUpdate < 1 || config.maxEpisodeSteps < 1) {
@@ -146,7 +146,7 @@ LearningCurve trainPolicyGradient(env::Environment& env, const jit::FeatureMap& 
   return curve;
 }
 
-Eigen::VectorXd estimatePolicyGradient(env::Environment& env, const jit::FeatureMap& map,
+Eigen::VectorXd estimatePolicyGradient(env::Environment& env, const features::FeatureMap& map,
                                        const PolicyGradientConfig& config,
                                        const Eigen::VectorXd& parameters, int episodes, Rng& rng) {
   checkDimensions(env, map);
@@ -172,7 +172,7 @@ Eigen::VectorXd estimatePolicyGradient(env::Environment& env, const jit::Feature
   return gradient;
 }
 
-EvaluationResult evaluatePolicy(env::Environment& env, const jit::FeatureMap& map,
+EvaluationResult evaluatePolicy(env::Environment& env, const features::FeatureMap& map,
                                 const LinearWeights& weights, const PolicyGradientConfig& config,
                                 int episodes, bool greedy, Rng& rng) {
   checkDimensions(env, map);

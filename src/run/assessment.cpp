@@ -9,15 +9,20 @@
 
 #include "gpfd/io/gnuplot.hpp"
 #include "gpfd/rl/fourier_basis.hpp"
-#include "gpfd/run/state_ranges.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::run {
 
 FeatureSet fourierFeatureSet(const LearningTask& task, int order) {
-  auto basis =
-      rl::FourierBasis::automatic(typicalStateRanges(task.config().env, task.stateNames()), order);
+  const auto& config = task.config();
+  auto ranges = env::Registry::global().make(config.env, config.envParams)->typicalStateRanges();
+  if (ranges.empty()) {
+    throw InputError("no typical state ranges are known for " + config.env +
+                         ", so the Fourier basis is not available for it",
+                     "--fourier");
+  }
+  auto basis = rl::FourierBasis::automatic(std::move(ranges), order);
   const bool full = basis.coupling() == rl::FourierBasis::Coupling::Full;
   return {fmt::format("fourier-{}{}", order, full ? "" : "-independent"),
           std::make_shared<const rl::FourierBasis>(std::move(basis))};

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 
 #include "gpfd/expr/features_file.hpp"
 #include "gpfd/expr/simplify.hpp"
@@ -183,13 +184,12 @@ std::unique_ptr<Discovery> Discovery::start(const ExperimentConfig& config,
     createDirectories(options.outDir, "results directory");
     createDirectories(options.outDir + "/best", "results directory");
     writeFileAtomically(state->path("config.toml"), state->configText);
-    const std::string processes =
-        options.processes > 1 ? fmt::format(",\n \"mpi_processes\": {}", options.processes) : "";
-    writeFileAtomically(
-        state->path("run.json"),
-        fmt::format("{{\n \"seed\": {},\n \"version\": \"{}\",\n \"revision\": "
-                    "\"{}\",\n \"threads\": {}{}\n}}\n",
-                    config.seed, options.version, options.revision, state->threads, processes));
+    nlohmann::ordered_json run{{"seed", config.seed},
+                               {"version", options.version},
+                               {"revision", options.revision},
+                               {"threads", state->threads}};
+    if (options.processes > 1) run["mpi_processes"] = options.processes;
+    writeFileAtomically(state->path("run.json"), run.dump(1) + "\n");
   } catch (...) {
     // Leave nothing half-made behind.
     std::error_code ignored;

@@ -1,12 +1,14 @@
 #include "gpfd/run/experiment_config.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <functional>
 
 #include "gpfd/env/environment.hpp"
 #include "gpfd/io/suggest.hpp"
 #include "gpfd/io/toml_fields.hpp"
-#include "gpfd/rl/learner_params.hpp"
+#include "gpfd/rl/learner.hpp"
+#include "gpfd/run/plugin.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
 
@@ -22,9 +24,10 @@ template <typename V>
 void visit(V& v, ExperimentConfig& c) {
   v.text("", "name", c.name);
   v.seed("", "seed", c.seed);
+  v.texts("", "plugins", c.plugins);
   v.text("env", "name", c.env);
   v.params("env.params", c.envParams);
-  v.text("learner", "name", c.learner, {"pg", "lpi"});
+  v.text("learner", "name", c.learner);
   v.params("learner.params", c.learnerParams);
   v.integer("fitness", "trials", c.trials, 1, 1000);
   v.integer("fitness", "max_trials", c.maxTrials, 0, 100000);
@@ -78,6 +81,7 @@ struct Reader {
     r.read(s, k, out, lo, hi);
   }
   void reals(const char* s, const char* k, std::vector<double>& out) { r.read(s, k, out); }
+  void texts(const char* s, const char* k, std::vector<std::string>& out) { r.read(s, k, out); }
   void boolean(const char* s, const char* k, bool& out) { r.read(s, k, out); }
   void params(const char* s, std::map<std::string, std::string>& out) { r.readParams(s, out); }
   void measure(const char* s, const char* k, TrialMeasure& out) {
@@ -101,6 +105,9 @@ struct Writer {
   }
   void real(const char* s, const char* k, double& v, double, double) { w.write(s, k, v); }
   void reals(const char* s, const char* k, std::vector<double>& v) { w.write(s, k, v); }
+  void texts(const char* s, const char* k, std::vector<std::string>& v) {
+    if (!v.empty()) w.write(s, k, v);  // Configs without plug-ins keep their text.
+  }
   void boolean(const char* s, const char* k, bool& v) { w.write(s, k, v); }
   void params(const char* s, std::map<std::string, std::string>& v) { w.writeParams(s, v); }
   void measure(const char* s, const char* k, TrialMeasure& v) { w.write(s, k, measureName(v)); }
@@ -121,60 +128,82 @@ std::string plainPlace(const std::string& section, const std::string& key) {
   return section.empty() ? key : section + "." + key;
 }
 
-bool applyLearnerParam(const std::string& learner, const std::string& key,
-                       const std::string& value) {
-  rl::PolicyGradientConfig pg;
-  rl::LambdaPolicyIterationConfig lpi;
-  return learner == "pg" ? rl::applyPolicyGradientParam(pg, key, value)
-                         : rl::applyLambdaPolicyIterationParam(lpi, key, value);
-}
-
-std::vector<std::string> learnerParamNames(const std::string& learner) {
-  std::vector<std::string> names;
-  for (const auto& spec :
-       learner == "pg" ? rl::policyGradientParamSpecs() : rl::lambdaPolicyIterationParamSpecs()) {
-    names.push_back(spec.name);
-  }
-  return names;
-}
-
-void checkLearnerParams(const ExperimentConfig& c, const std::string& section,
-                        const std::map<std::string, std::string>& params, const Place& place) {
+// Refuses a key of `params` that is not one of `names` (the parameters of `owner`), with a
+// suggestion, at the key's place in `section`.
+void requireKnown(const Params& params, const std::vector<std::string>& names,
+                  const std::string& owner, const std::string& section, const Place& place) {
   for (const auto& [key, value] : params) {
-    try {
-      require(applyLearnerParam(c.learner, key, value),
-              "unknown parameter '" + key + "' of learner " + c.learner +
-                  io::didYouMean(key, learnerParamNames(c.learner)),
-              place(section, key));
-    } catch (const InputError& e) {
-      throw InputError(e.what(), place(section, key));
+    require(std::find(names.begin(), names.end(), key) != names.end(),
+            "unknown parameter '" + key + "' of " + owner + io::didYouMean(key, names),
+            place(section, key));
+  }
+}
+
+// Runs `make`. An InputError about parameter "<owner>.<key>" (as parameter tables name them) is
+// moved to the place of that key in the first of `sections` that sets it, any other to
+// `fallback`.
+template <typename Make>
+auto makeAt(const Make& make, const std::string& owner,
+            const std::vector<std::pair<std::string, const Params*>>& sections,
+            const std::string& fallback, const Place& place) {
+  try {
+    return make();
+  } catch (const InputError& e) {
+    const std::string prefix = owner + ".";
+    if (e.where().starts_with(prefix)) {
+      const std::string key = e.where().substr(prefix.size());
+      for (const auto& [section, params] : sections) {
+        if (params->count(key)) throw InputError(e.what(), place(section, key));
+      }
     }
+    throw InputError(e.what(), fallback);
   }
 }
 
 void validateAt(const ExperimentConfig& c, const Place& place) {
+  for (const auto& plugin : c.plugins) {
+    try {
+      loadPlugin(plugin);
+    } catch (const InputError& e) {
+      throw InputError(e.what() + (" (" + e.where() + ")"), place("", "plugins"));
+    }
+  }
   const auto& registry = env::Registry::global();
   const auto envs = registry.names();
   require(std::find(envs.begin(), envs.end(), c.env) != envs.end(),
           "unknown environment '" + c.env + "'" + io::didYouMean(c.env, envs),
           place("env", "name"));
-  std::vector<std::string> envParamNames;
-  for (const auto& spec : registry.info(c.env).params) envParamNames.push_back(spec.name);
-  for (const auto& [key, value] : c.envParams) {
-    require(std::find(envParamNames.begin(), envParamNames.end(), key) != envParamNames.end(),
-            "unknown parameter '" + key + "' of environment " + c.env +
-                io::didYouMean(key, envParamNames),
-            place("env.params", key));
-    try {
-      registry.make(c.env, {{key, value}});
-    } catch (const InputError& e) {
-      throw InputError(e.what(), place("env.params", key));
-    }
+  requireKnown(c.envParams, paramNames(registry.info(c.env).params), "environment " + c.env,
+               "env.params", place);
+  const auto environment = makeAt([&] { return registry.make(c.env, c.envParams); }, c.env,
+                                  {{"env.params", &c.envParams}}, place("env", "name"), place);
+
+  const auto& learners = rl::LearnerRegistry::global();
+  const auto learnerNames = learners.names();
+  require(std::find(learnerNames.begin(), learnerNames.end(), c.learner) != learnerNames.end(),
+          "unknown learner '" + c.learner + "'" + io::didYouMean(c.learner, learnerNames),
+          place("learner", "name"));
+  try {
+    learners.checkSuitable(c.learner, *environment);
+  } catch (const InputError& e) {
+    throw InputError(e.what(), place("learner", "name"));
   }
-  registry.make(c.env, c.envParams);  // Parameters that are only wrong together.
-  checkLearnerParams(c, "learner.params", c.learnerParams, place);
-  checkLearnerParams(c, "assess.params", c.assessParams, place);
-  checkLearnerParams(c, "validation.params", c.validation.params, place);
+  const auto learnerParamNames = paramNames(learners.info(c.learner).params);
+  requireKnown(c.learnerParams, learnerParamNames, "learner " + c.learner, "learner.params", place);
+  requireKnown(c.assessParams, learnerParamNames, "learner " + c.learner, "assess.params", place);
+  requireKnown(c.validation.params, learnerParamNames, "learner " + c.learner,
+               "validation.params", place);
+  makeAt([&] { return learners.make(c.learner, c.learnerParams); }, c.learner,
+         {{"learner.params", &c.learnerParams}}, place("learner", "name"), place);
+  // The assessment and validation budgets, as LearningTask sees them.
+  for (const auto* overrides : {&c.assessParams, &c.validation.params}) {
+    Params merged = c.learnerParams;
+    for (const auto& [key, value] : *overrides) merged[key] = value;
+    const char* section = overrides == &c.assessParams ? "assess.params" : "validation.params";
+    makeAt([&] { return learners.make(c.learner, merged); }, c.learner,
+           {{section, overrides}, {"learner.params", &c.learnerParams}}, place("learner", "name"),
+           place);
+  }
   require(c.maxTrials == 0 || c.maxTrials >= c.trials,
           "fitness.max_trials must be 0 (no re-evaluation) or at least fitness.trials (" +
               std::to_string(c.trials) + ")",
@@ -204,6 +233,12 @@ ExperimentConfig parseExperimentConfig(const std::string& text, const std::strin
   Reader visitor{reader};
   visit(visitor, config);
   reader.finish();
+  // Plug-in paths relative to the config file's directory, stored absolute (for resumes).
+  const std::filesystem::path base =
+      std::filesystem::is_regular_file(source) ? std::filesystem::path(source).parent_path() : "";
+  for (auto& plugin : config.plugins) {
+    plugin = std::filesystem::absolute(base / plugin).lexically_normal().string();
+  }
   validateAt(config, [&reader](const std::string& section, const std::string& key) {
     return reader.where(section, key);
   });

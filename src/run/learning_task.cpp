@@ -3,14 +3,8 @@
 #include <cmath>
 #include <limits>
 
-#include "gpfd/env/tetris.hpp"
 #include "gpfd/jit/compiled_feature_map.hpp"
-#include "gpfd/rl/lambda_policy_iteration.hpp"
-#include "gpfd/rl/learner_params.hpp"
-#include "gpfd/rl/policy_gradient.hpp"
-#include "gpfd/rl/tetris_afterstates.hpp"
 #include "gpfd/run/redundancy.hpp"
-#include "gpfd/util/error.hpp"
 
 namespace gpfd::run {
 namespace {
@@ -28,8 +22,10 @@ LearningTask::LearningTask(const ExperimentConfig& config, Budget budget)
   if (budget == Budget::Validation) {
     for (const auto& [k, v] : config.validation.params) learnerParams_[k] = v;
   }
-  auto environment = env::Registry::global().make(config_.env, config_.envParams);
+  const auto environment = env::Registry::global().make(config_.env, config_.envParams);
   stateNames_ = environment->stateNames();
+  rl::LearnerRegistry::global().checkSuitable(config_.learner, *environment);
+  learner_ = rl::LearnerRegistry::global().make(config_.learner, learnerParams_);
   if (config_.dropRedundant || config_.normalise) {
     sample_ = std::make_shared<const FeatureSample>(
         sampleVisitedStates(*environment, static_cast<std::size_t>(config_.stateSample),
@@ -42,26 +38,14 @@ expr::Genome LearningTask::prepared(const expr::Genome& genome) const {
   return config_.normalise ? normaliseFeatures(genome, *sample_) : genome;
 }
 
-std::shared_ptr<const jit::FeatureMap> LearningTask::featureMap(const expr::Genome& genome) const {
+std::shared_ptr<const features::FeatureMap> LearningTask::featureMap(
+    const expr::Genome& genome) const {
   return genomeFeatureMap(prepared(genome), stateDim(), config_.withOriginal);
 }
 
-rl::LearningCurve LearningTask::train(const jit::FeatureMap& map, Rng& rng) const {
-  auto environment = env::Registry::global().make(config_.env, config_.envParams);
-  if (config_.learner == "lpi") {
-    auto* tetris = dynamic_cast<env::Tetris*>(environment.get());
-    if (tetris == nullptr) {
-      throw InputError("learner lpi needs an afterstate environment (tetris), not " + config_.env,
-                       "learner.name");
-    }
-    rl::LambdaPolicyIterationConfig lpi;
-    for (const auto& [k, v] : learnerParams_) rl::applyLambdaPolicyIterationParam(lpi, k, v);
-    rl::TetrisAfterstateProblem problem(*tetris);
-    return rl::trainLambdaPolicyIteration(problem, map, lpi, rng);
-  }
-  rl::PolicyGradientConfig pg;
-  for (const auto& [k, v] : learnerParams_) rl::applyPolicyGradientParam(pg, k, v);
-  return rl::trainPolicyGradient(*environment, map, pg, rng);
+rl::LearningCurve LearningTask::train(const features::FeatureMap& map, Rng& rng) const {
+  const auto environment = env::Registry::global().make(config_.env, config_.envParams);
+  return learner_->train(*environment, map, rng);
 }
 
 double LearningTask::score(const rl::LearningCurve& curve) const {
@@ -102,17 +86,18 @@ bool isIdentity(const expr::Genome& genome, std::size_t stateDim) {
 
 }  // namespace
 
-std::shared_ptr<const jit::FeatureMap> genomeFeatureMap(const expr::Genome& genome,
-                                                        std::size_t stateDim, bool withOriginal) {
+std::shared_ptr<const features::FeatureMap> genomeFeatureMap(const expr::Genome& genome,
+                                                             std::size_t stateDim,
+                                                             bool withOriginal) {
   // The original variables added to themselves would only repeat every column.
   if (withOriginal && isIdentity(genome, stateDim)) {
-    return std::make_shared<const jit::RawFeatureMap>(stateDim);
+    return std::make_shared<const features::RawFeatureMap>(stateDim);
   }
   auto compiled = std::make_shared<const jit::CompiledFeatureMap>(genome, stateDim);
   if (!withOriginal) return compiled;
-  return std::make_shared<const jit::ConcatFeatureMap>(
-      std::vector<std::shared_ptr<const jit::FeatureMap>>{
-          compiled, std::make_shared<const jit::RawFeatureMap>(stateDim)});
+  return std::make_shared<const features::ConcatFeatureMap>(
+      std::vector<std::shared_ptr<const features::FeatureMap>>{
+          compiled, std::make_shared<const features::RawFeatureMap>(stateDim)});
 }
 
 double trialFitness(const LearningTask& task, const expr::Genome& genome, Rng& rng) {

@@ -20,6 +20,7 @@
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/directory_lock.hpp"
 #include "gpfd/util/error.hpp"
+#include "gpfd/util/number.hpp"
 
 namespace gpfd::run {
 namespace {
@@ -104,7 +105,7 @@ class Experiment {
     ExperimentConfig remeasured = config;
     remeasured.validation.seeds = kRemeasureSeeds;
     const Validator validator(remeasured, o_.threads, Validator::kRemeasureStream);
-    scores = validator.score(std::vector<std::shared_ptr<const jit::FeatureMap>>{
+    scores = validator.score(std::vector<std::shared_ptr<const features::FeatureMap>>{
         genomeFeatureMap(returned, validator.task().stateDim(), config.withOriginal)})[0];
     std::string csv = "score\n";
     for (const double v : scores) csv += fmt::format("{}\n", v);
@@ -125,7 +126,7 @@ class Experiment {
     checkStop(dir);
     if (fs::exists(dir + "/summary.csv")) {
       if (fs::exists(dir + "/seconds.txt"))
-        assessSeconds_ += std::stod(readFile(dir + "/seconds.txt"));
+        assessSeconds_ += parseNumber(readFile(dir + "/seconds.txt"), dir + "/seconds.txt");
       return;
     }
     const auto start = std::chrono::steady_clock::now();
@@ -137,7 +138,7 @@ class Experiment {
         runAssessment(task, sets, task.config().assessRuns, task.config().seed, o_.threads);
     createDirectories(dir);
     writeAssessment(dir, result, summarizeAssessment(result, 0), title,
-                    task.config().learner == "lpi" ? "lambda-PI iteration" : "policy update");
+                    rl::LearnerRegistry::global().info(task.config().learner).rowName);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     writeFileAtomically(dir + "/seconds.txt", fmt::format("{:.1f}\n", seconds));
@@ -242,7 +243,7 @@ io::Report benchmark(Experiment& e, const ExperimentConfig& config, const std::s
   const std::string figure = fs::path(e.dir()).filename().string();
   const LearningTask task(config, LearningTask::Budget::Assessment);
   const FeatureSet original{"original",
-                            std::make_shared<const jit::RawFeatureMap>(task.stateDim())};
+                            std::make_shared<const features::RawFeatureMap>(task.stateDim())};
   std::vector<FeatureSet> sets{original};
   sets.insert(sets.end(), extraSets.begin(), extraSets.end());
   const std::size_t firstRun = sets.size();

@@ -83,7 +83,7 @@ Validator::Validator(const ExperimentConfig& config, int threads, std::uint64_t 
     : task_(config, LearningTask::Budget::Validation), threads_(threads), stream_(stream) {}
 
 std::vector<std::vector<double>> Validator::score(
-    const std::vector<std::shared_ptr<const jit::FeatureMap>>& maps) const {
+    const std::vector<std::shared_ptr<const features::FeatureMap>>& maps) const {
   const auto& config = task_.config();
   const auto seeds = static_cast<std::size_t>(config.validation.seeds);
   std::vector<std::vector<double>> scores(maps.size(), std::vector<double>(seeds));
@@ -100,11 +100,11 @@ std::vector<std::vector<double>> Validator::score(
 
 std::vector<std::vector<double>> Validator::score(
     const std::vector<const expr::Genome*>& sets) const {
-  std::vector<std::shared_ptr<const jit::FeatureMap>> maps;
+  std::vector<std::shared_ptr<const features::FeatureMap>> maps;
   for (const auto* genome : sets) {
     maps.push_back(genome != nullptr
                        ? task_.featureMap(*genome)
-                       : std::make_shared<const jit::RawFeatureMap>(task_.stateDim()));
+                       : std::make_shared<const features::RawFeatureMap>(task_.stateDim()));
   }
   return score(maps);
 }

@@ -1,5 +1,5 @@
 // Acrobot and cart-pole against golden trajectories computed independently from the equations of
-// BENCHMARKS.md by tests/data/env/make_golden.py (plain Python, see its docstring).
+// docs/benchmarks.md by tests/data/env/make_golden.py (plain Python, see its docstring).
 #include <gtest/gtest.h>
 
 #include <cmath>

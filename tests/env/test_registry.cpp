@@ -1,6 +1,8 @@
 // The environment registry: names, parameter checking, resolved parameters and user environments.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "gpfd/env/environment.hpp"
 #include "gpfd/util/error.hpp"
 
@@ -9,7 +11,9 @@ namespace {
 
 TEST(Registry, KnowsTheBuiltInEnvironments) {
   const auto names = Registry::global().names();
-  EXPECT_EQ(names, (std::vector<std::string>{"acrobot", "cartpole", "swimmer", "tetris"}));
+  for (const char* name : {"acrobot", "cartpole", "swimmer", "tetris"}) {
+    EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+  }
   EXPECT_EQ(Registry::global().make("swimmer", {{"segments", "5"}})->stateDim(), 12u);
   EXPECT_EQ(Registry::global().make("tetris", {{"rows", "20"}, {"cols", "10"}})->stateDim(), 22u);
 }

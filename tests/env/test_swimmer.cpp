@@ -18,8 +18,8 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// Straight from the equations of BENCHMARKS.md, without eliminating anything: unknowns A''_0 (2),
-// th''_1..n (n) and the internal forces f_1..f_{n-1} (2 each), with f_0 = f_n = 0; equations
+// Straight from the equations of docs/benchmarks.md, without eliminating anything: unknowns A''_0
+// (2), th''_1..n (n) and the internal forces f_1..f_{n-1} (2 each), with f_0 = f_n = 0; equations
 // m_i G''_i = F_i + f_i - f_{i-1} (2n) and the n rotation equations. Returns (G''x, G''y, th''...).
 std::vector<double> referenceAccelerations(int n, double k, const std::vector<double>& s,
                                            const std::vector<double>& u) {

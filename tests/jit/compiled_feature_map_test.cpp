@@ -28,6 +28,7 @@ TEST(CompiledFeatureMap, IsNativeWhereTheJitIsAvailable) {
 }
 
 TEST(CompiledFeatureMap, FallbackGivesTheSameFeatures) {
+  if (!jitAvailable()) GTEST_SKIP() << "needs native code: this build has no JIT";
   for (int g = 0; g < 50; ++g) {
     const auto genome = sample(100 + g);
     const CompiledFeatureMap native(genome, 4);

@@ -10,7 +10,7 @@ namespace gpfd::rl {
 namespace {
 
 TEST(FeaturePipeline, AppendsBias) {
-  const jit::RawFeatureMap raw(2);
+  const features::RawFeatureMap raw(2);
   FeaturePipeline features(raw, {.bias = true, .normalise = false});
   ASSERT_EQ(features.dim(), 3u);
   const double state[2] = {4.0, -2.0};
@@ -22,7 +22,7 @@ TEST(FeaturePipeline, AppendsBias) {
 }
 
 TEST(FeaturePipeline, ReportsNonFinite) {
-  const jit::RawFeatureMap raw(2);
+  const features::RawFeatureMap raw(2);
   FeaturePipeline features(raw, {});
   const double state[4] = {1.0, 2.0, std::numeric_limits<double>::infinity(), 0.0};
   double out[6];
@@ -31,7 +31,7 @@ TEST(FeaturePipeline, ReportsNonFinite) {
 }
 
 TEST(FeaturePipeline, RefreshNormalisesAndKeepsOutputs) {
-  const jit::RawFeatureMap raw(2);
+  const features::RawFeatureMap raw(2);
   FeaturePipeline features(raw, {.bias = true, .normalise = true});
   Rng rng(4);
   double out[3];

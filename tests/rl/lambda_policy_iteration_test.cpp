@@ -5,7 +5,7 @@
 #include <Eigen/QR>
 #include <limits>
 
-#include "gpfd/jit/feature_map.hpp"
+#include "gpfd/features/feature_map.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::rl {
@@ -102,7 +102,7 @@ class Climb final : public AfterstateProblem {
 
 TEST(LambdaPolicyIteration, LambdaOneFitsTheExactValueInOneIteration) {
   Climb game(10);
-  const jit::RawFeatureMap raw(1);
+  const features::RawFeatureMap raw(1);
   LambdaPolicyIterationConfig config;
   config.iterations = 1;
   config.gamesPerIteration = 3;
@@ -122,7 +122,7 @@ TEST(LambdaPolicyIteration, LambdaOneFitsTheExactValueInOneIteration) {
 
 TEST(LambdaPolicyIteration, SmallerLambdaConvergesToTheSameValue) {
   Climb game(10);
-  const jit::RawFeatureMap raw(1);
+  const features::RawFeatureMap raw(1);
   LambdaPolicyIterationConfig config;
   config.iterations = 60;
   config.gamesPerIteration = 1;
@@ -137,7 +137,7 @@ TEST(LambdaPolicyIteration, SmallerLambdaConvergesToTheSameValue) {
 
 TEST(LambdaPolicyIteration, CappedGamesAndGreedyPlay) {
   Climb game(1000);
-  const jit::RawFeatureMap raw(1);
+  const features::RawFeatureMap raw(1);
   LambdaPolicyIterationConfig config;
   config.iterations = 2;
   config.gamesPerIteration = 2;
@@ -155,7 +155,7 @@ TEST(LambdaPolicyIteration, CappedGamesAndGreedyPlay) {
 
 TEST(LambdaPolicyIteration, NonFiniteFeatureMarksTheRunDiverged) {
   Climb game(10, 4.0);
-  const jit::RawFeatureMap raw(1);
+  const features::RawFeatureMap raw(1);
   LambdaPolicyIterationConfig config;
   config.iterations = 3;
   config.gamesPerIteration = 2;
@@ -167,7 +167,7 @@ TEST(LambdaPolicyIteration, NonFiniteFeatureMarksTheRunDiverged) {
 
 TEST(LambdaPolicyIteration, BadInitialWeightsAreAnInputError) {
   Climb game(10);
-  const jit::RawFeatureMap raw(1);
+  const features::RawFeatureMap raw(1);
   LambdaPolicyIterationConfig config;
   config.initialWeights = {1.0, 2.0, 3.0};
   Rng rng(1);

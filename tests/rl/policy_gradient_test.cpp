@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "gpfd/jit/feature_map.hpp"
+#include "gpfd/features/feature_map.hpp"
 #include "gpfd/rl/gradient_estimator.hpp"
 #include "gpfd/rl/linear_policy.hpp"
 #include "gpfd/util/error.hpp"
@@ -35,7 +35,7 @@ double simulatedReturn(const LinearBandit& bandit, double w0, double w1, double 
 TEST(PolicyGradient, EstimateMatchesFiniteDifferences) {
   const LinearBandit bandit(1.0, 0.0);
   LinearBandit env = bandit;
-  const jit::RawFeatureMap raw(1);
+  const features::RawFeatureMap raw(1);
   PolicyGradientConfig config;
   config.policy.initialStd = 0.5;
   config.policy.learnStd = true;
@@ -100,7 +100,7 @@ TEST(PolicyGradient, SoftmaxLogLikelihoodGradientMatchesFiniteDifferences) {
 // Sum over parameters of the variance of the gradient estimate over many batches.
 double estimateVariance(bool baseline) {
   LinearBandit env(1.0, 10.0);  // A large reward offset: the case a baseline is for.
-  const jit::RawFeatureMap raw(1);
+  const features::RawFeatureMap raw(1);
   PolicyGradientConfig config;
   config.optimalBaseline = baseline;
   Eigen::VectorXd params(2);
@@ -153,7 +153,7 @@ TEST(GradientEstimator, EqualReturnsGiveAnExactlyZeroGradient) {
 
 TEST(PolicyGradient, LearnsTheBandit) {
   LinearBandit env(0.8, 0.0);
-  const jit::RawFeatureMap raw(1);
+  const features::RawFeatureMap raw(1);
   PolicyGradientConfig config;
   config.updates = 150;
   config.policy.initialStd = 0.3;
@@ -169,7 +169,7 @@ TEST(PolicyGradient, LearnsTheBandit) {
 
 TEST(PolicyGradient, SoftmaxLearnsTheCorridorAndEvaluatesGreedily) {
   Corridor env(4, 40);
-  const jit::RawFeatureMap raw(1);
+  const features::RawFeatureMap raw(1);
   PolicyGradientConfig config;
   config.updates = 60;
   Rng rng(2);
@@ -184,7 +184,7 @@ TEST(PolicyGradient, SoftmaxLearnsTheCorridorAndEvaluatesGreedily) {
 
 TEST(PolicyGradient, SameSeedSameCurve) {
   LinearBandit env(1.0, 0.0);
-  const jit::RawFeatureMap raw(1);
+  const features::RawFeatureMap raw(1);
   PolicyGradientConfig config;
   config.updates = 20;
   config.features.normalise = true;
@@ -200,7 +200,7 @@ TEST(PolicyGradient, SameSeedSameCurve) {
 
 TEST(PolicyGradient, NonFiniteStateMarksTheRunDiverged) {
   PoisonedEnv env;
-  const jit::RawFeatureMap raw(1);
+  const features::RawFeatureMap raw(1);
   PolicyGradientConfig config;
   config.updates = 5;
   Rng rng(1);
@@ -212,7 +212,7 @@ TEST(PolicyGradient, NonFiniteStateMarksTheRunDiverged) {
 
 TEST(PolicyGradient, WrongFeatureInputIsAnInputError) {
   LinearBandit env;
-  const jit::RawFeatureMap raw(3);
+  const features::RawFeatureMap raw(3);
   Rng rng(1);
   EXPECT_THROW(trainPolicyGradient(env, raw, {}, rng), InputError);
 }

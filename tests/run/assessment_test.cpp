@@ -22,7 +22,7 @@ TEST(Assessment, SameResultWithOneAndTwoThreadsAndAreasAreCurveMeans) {
   sincos.addFeature(expr::parseInfix("sin(th)", task.stateNames()));
   sincos.addFeature(expr::parseInfix("dth * 2", task.stateNames()));
   const std::vector<FeatureSet> sets{
-      {"original", std::make_shared<const jit::RawFeatureMap>(task.stateDim())},
+      {"original", std::make_shared<const features::RawFeatureMap>(task.stateDim())},
       {"mine", genomeFeatureMap(sincos, task.stateDim(), true)}};
   const auto one = runAssessment(task, sets, 3, 7, 1);
   const auto two = runAssessment(task, sets, 3, 7, 2);

@@ -213,7 +213,7 @@ TEST(Evolve, TheValidatedScoreHoldsOnFreshSeeds) {
   const double mean = std::stod(validated);
   const double se = std::stod(validated.substr(validated.find("+-") + 2));
   const run::Validator remeasure(config, 2, run::Validator::kRemeasureStream);
-  const auto scores = remeasure.score(std::vector<std::shared_ptr<const jit::FeatureMap>>{
+  const auto scores = remeasure.score(std::vector<std::shared_ptr<const features::FeatureMap>>{
       run::genomeFeatureMap(file.genome, 4, config.withOriginal)})[0];
   const auto fresh = run::summarize(scores);
   const double freshSe = fresh.stddev / std::sqrt(static_cast<double>(fresh.n));

@@ -5,11 +5,13 @@
 #include <filesystem>
 
 #include "cli_helpers.hpp"
+#include "gpfd/jit/x86_compiler.hpp"
 
 namespace gpfd::testing {
 namespace {
 
 TEST(Reproduce, Figure3WritesItsDataAndTheReportAndARerunReusesIt) {
+  if (!jit::jitAvailable()) GTEST_SKIP() << "needs native code: this build has no JIT";
   const auto dir = freshDir("reproduce-fig3");
   const auto first = runGpfd("reproduce fig3 --scale quick --quiet --out " + dir);
   ASSERT_EQ(first.status, 0) << first.output;

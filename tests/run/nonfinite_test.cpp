@@ -9,7 +9,7 @@
 #include "cli_helpers.hpp"
 #include "gpfd/env/environment.hpp"
 #include "gpfd/expr/parse.hpp"
-#include "gpfd/jit/feature_map.hpp"
+#include "gpfd/features/feature_map.hpp"
 #include "gpfd/run/learning_task.hpp"
 
 namespace gpfd::testing {
@@ -51,7 +51,7 @@ TEST(NonFinite, AnIndividualWhoseSimulationBreaksScoresWorst) {
   config.learnerParams = {{"updates", "3"}};
   const run::LearningTask task(config, run::LearningTask::Budget::Trial);
   Rng rng(2);
-  const auto curve = task.train(jit::RawFeatureMap(1), rng);
+  const auto curve = task.train(features::RawFeatureMap(1), rng);
   EXPECT_TRUE(curve.diverged);
   EXPECT_EQ(task.score(curve), -INFINITY);
 }

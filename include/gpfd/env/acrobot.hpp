@@ -1,5 +1,5 @@
-// env: Acrobot, the two-link underactuated pendulum (Sutton & Barto; Gymnasium Acrobot-v1),
-// exactly as fixed in BENCHMARKS.md.
+// env: Acrobot, the two-link underactuated pendulum (Sutton & Barto 1998, section 11.3; Spong
+// 1995; Gymnasium Acrobot-v1), with the equations and constants of docs/benchmarks.md.
 #pragma once
 
 #include <array>
@@ -19,9 +19,9 @@ struct AcrobotConfig {
   bool discrete = false;   // Actions: continuous torque (default) or 3 discrete choices.
   int maxSteps = 500;      // Truncation after this many steps; 0 = no limit.
 
-  static AcrobotConfig fromParams(const Params& params);  // Throws InputError.
-  Params toParams() const;
-  static std::vector<ParamSpec> paramSpecs();
+  // The parameters, declared once: names, defaults, ranges and meanings.
+  static const ParamTable<AcrobotConfig>& table();
+  static AcrobotConfig fromParams(const Params& params) { return table().read(params); }
 };
 
 // State (th1, th2, dth1, dth2) in rad and rad/s; th1 = 0 hangs down, th2 relative to link 1.
@@ -31,18 +31,20 @@ class Acrobot final : public Environment {
   using State = std::array<double, 4>;
 
   explicit Acrobot(AcrobotConfig config = {});
+  static EnvInfo info();  // Name, description and factory, for the registry.
 
   std::string name() const override { return "acrobot"; }
-  Params params() const override { return config_.toParams(); }
+  Params params() const override { return AcrobotConfig::table().write(config_); }
   const std::vector<std::string>& stateNames() const override;
   ActionSpace actionSpace() const override;
   void reset(Rng& rng) override;
   std::span<const double> state() const override { return state_; }
   void setState(std::span<const double> state) override;
   StepResult step(std::span<const double> action) override;
+  std::vector<StateRange> typicalStateRanges() const override;
 
   const AcrobotConfig& config() const { return config_; }
-  // d/dt (th1, th2, dth1, dth2) at `s` under torque `tau` (BENCHMARKS.md equations).
+  // d/dt (th1, th2, dth1, dth2) at `s` under torque `tau` (docs/benchmarks.md).
   State derivative(const State& s, double tau) const;
   bool terminal() const;
   // The torque an action stands for (clipped; NaN -> 0; discrete index -> torque).

@@ -1,5 +1,6 @@
-// env: cart-pole balancing (Barto, Sutton & Anderson 1983; Gymnasium CartPole-v1), exactly as
-// fixed in BENCHMARKS.md, with the options of the Riedmiller group's CLSquare variant.
+// env: cart-pole balancing (Barto, Sutton & Anderson 1983; Gymnasium CartPole-v1), with the
+// equations and constants of docs/benchmarks.md and the options of the Riedmiller group's CLSquare
+// variant.
 #pragma once
 
 #include <array>
@@ -18,9 +19,9 @@ struct CartPoleConfig {
   bool discrete = false;                      // Discrete: 0 -> -maxForce, 1 -> +maxForce.
   int maxSteps = 1000;                        // Truncation; 0 = no limit.
 
-  static CartPoleConfig fromParams(const Params& params);  // Throws InputError.
-  Params toParams() const;
-  static std::vector<ParamSpec> paramSpecs();
+  // The parameters, declared once: names, defaults, ranges and meanings.
+  static const ParamTable<CartPoleConfig>& table();
+  static CartPoleConfig fromParams(const Params& params) { return table().read(params); }
 };
 
 // State (x, dx, th, dth) in m, m/s, rad, rad/s; th = 0 upright. Reward +1 per step, the failing
@@ -30,18 +31,20 @@ class CartPole final : public Environment {
   using State = std::array<double, 4>;
 
   explicit CartPole(CartPoleConfig config = {});
+  static EnvInfo info();  // Name, description and factory, for the registry.
 
   std::string name() const override { return "cartpole"; }
-  Params params() const override { return config_.toParams(); }
+  Params params() const override { return CartPoleConfig::table().write(config_); }
   const std::vector<std::string>& stateNames() const override;
   ActionSpace actionSpace() const override;
   void reset(Rng& rng) override;
   std::span<const double> state() const override { return state_; }
   void setState(std::span<const double> state) override;
   StepResult step(std::span<const double> action) override;
+  std::vector<StateRange> typicalStateRanges() const override;
 
   const CartPoleConfig& config() const { return config_; }
-  // d/dt (x, dx, th, dth) at `s` under force `force` (BENCHMARKS.md equations).
+  // d/dt (x, dx, th, dth) at `s` under force `force` (docs/benchmarks.md).
   State derivative(const State& s, double force) const;
   bool terminal() const;
   double forceOf(std::span<const double> action) const;

@@ -4,25 +4,30 @@
 
 #include <cstddef>
 #include <functional>
-#include <map>
 #include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "gpfd/util/named_registry.hpp"
+#include "gpfd/util/params.hpp"
 #include "gpfd/util/rng.hpp"
 
 namespace gpfd::env {
 
-// Raw parameter values by name, as given in a config or on the command line (`k=v`).
-using Params = std::map<std::string, std::string>;
+// Parameter values by name, as given in a config or on the command line (`k=v`), and the
+// declaration of one parameter (util/params.hpp).
+using gpfd::Params;
+using gpfd::ParamSpec;
 
-// One parameter an environment takes: its name, default value (as text) and meaning.
-struct ParamSpec {
-  std::string name;
-  std::string defaultValue;
-  std::string meaning;
+// The typical range of one state variable: exact where the dynamics bound it, otherwise the
+// values seen in episodes. The Fourier basis scales states to [0, 1] with it.
+struct StateRange {
+  double low = 0.0;
+  double high = 1.0;
 };
+
+class AfterstateGame;
 
 // A continuous box (one [low, high] per dimension) or a set of discrete choices. A discrete
 // action is passed to step() as its components (one component, the choice index, for a plain
@@ -78,6 +83,13 @@ class Environment {
   // in the box for continuous spaces, a uniform choice for discrete ones. Environments whose legal
   // actions depend on the state (Tetris) override it.
   virtual void sampleAction(Rng& rng, std::span<double> action) const;
+
+  // What an environment knows about itself, for the learners and feature sets that ask:
+  // One typical range per state variable (empty: none known, so no Fourier basis).
+  virtual std::vector<StateRange> typicalStateRanges() const { return {}; }
+  // The afterstate view of a game whose moves are chosen by looking one move ahead (Tetris), for
+  // learners that need it (afterstate_game.hpp); nullptr for the others. Valid while this lives.
+  virtual AfterstateGame* afterstateGame() { return nullptr; }
 };
 
 using Factory = std::function<std::unique_ptr<Environment>(const Params&)>;
@@ -88,25 +100,22 @@ struct EnvInfo {
   std::string description;
   std::vector<ParamSpec> params;
   Factory make;
+  std::string defaultLearner = "pg";  // The learner that commands use unless told otherwise.
 };
 
-// Maps names to factories. The built-in environments are registered on first use; users add
-// their own with add() (see docs/environments.md).
-class Registry {
+// Maps names to factories. The built-in environments are registered on first use (one line each
+// in src/env/registry.cpp); plug-ins and programs add their own with add() (docs/environments.md).
+// info(name) and names() come from NamedRegistry.
+class Registry : public NamedRegistry<EnvInfo> {
  public:
+  Registry() : NamedRegistry("environment") {}
   static Registry& global();
 
-  // Throws InputError when the name is taken.
+  // Throws InputError when the name is taken or the factory missing.
   void add(EnvInfo info);
-  // Throws InputError naming the unknown environment (with the known names).
-  const EnvInfo& info(const std::string& name) const;
-  std::vector<std::string> names() const;
   // Validates the parameter names against info(name).params (InputError on an unknown one) and
   // makes a fresh instance.
   std::unique_ptr<Environment> make(const std::string& name, const Params& params = {}) const;
-
- private:
-  std::map<std::string, EnvInfo> entries_;
 };
 
 }  // namespace gpfd::env

@@ -3,18 +3,10 @@
 
 #include <array>
 #include <cstddef>
-#include <string>
 
 namespace gpfd::env {
 
 enum class Integrator { Euler, Rk4 };
-
-inline const char* integratorName(Integrator integrator) {
-  return integrator == Integrator::Euler ? "euler" : "rk4";
-}
-inline Integrator integratorFromName(const std::string& name) {
-  return name == "euler" ? Integrator::Euler : Integrator::Rk4;
-}
 
 template <std::size_t N>
 using Vec = std::array<double, N>;

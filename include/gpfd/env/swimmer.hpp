@@ -1,5 +1,5 @@
-// env: the n-segment swimmer in a viscous fluid (R. Coulom, PhD thesis 2002, appendix B), exactly
-// as fixed in BENCHMARKS.md.
+// env: the n-segment swimmer in a viscous fluid (R. Coulom, PhD thesis 2002, appendix B), with the
+// equations of docs/benchmarks.md.
 #pragma once
 
 #include <Eigen/Dense>
@@ -11,7 +11,7 @@
 
 namespace gpfd::env {
 
-// Defaults marked (ours) are choices BENCHMARKS.md leaves open; docs/environments.md explains them.
+// Defaults marked (ours) are choices the sources leave open; docs/environments.md explains them.
 struct SwimmerConfig {
   int segments = 3;                           // n >= 2 (the paper: 3 and 5).
   Integrator integrator = Integrator::Euler;  // Coulom integrates with explicit Euler.
@@ -22,9 +22,9 @@ struct SwimmerConfig {
   double viscosity = 10.0;                    // Fluid viscosity k (0 = no drag, for tests).
   double startAngleNoise = 0.1;               // Reset: th_i ~ U(-a, a) around 0, at rest (ours).
 
-  static SwimmerConfig fromParams(const Params& params);  // Throws InputError.
-  Params toParams() const;
-  static std::vector<ParamSpec> paramSpecs();
+  // The parameters, declared once: names, defaults, ranges and meanings.
+  static const ParamTable<SwimmerConfig>& table();
+  static SwimmerConfig fromParams(const Params& params) { return table().read(params); }
 };
 
 // State (dGx, dGy, th1, dth1, ..., thn, dthn): 2n + 2 values; velocity of the centre of mass in
@@ -34,22 +34,24 @@ struct SwimmerConfig {
 class Swimmer final : public Environment {
  public:
   explicit Swimmer(SwimmerConfig config = {});
+  static EnvInfo info();  // Name, description and factory, for the registry.
 
   std::string name() const override { return "swimmer"; }
-  Params params() const override { return config_.toParams(); }
+  Params params() const override { return SwimmerConfig::table().write(config_); }
   const std::vector<std::string>& stateNames() const override { return names_; }
   ActionSpace actionSpace() const override;
   void reset(Rng& rng) override;
   std::span<const double> state() const override { return state_; }
   void setState(std::span<const double> state) override;
   StepResult step(std::span<const double> action) override;
+  std::vector<StateRange> typicalStateRanges() const override;
 
   const SwimmerConfig& config() const { return config_; }
   int segments() const { return n_; }
   // d/dt state at `state` (2n + 2 values) under joint torques `torque` (n - 1 values, used as
-  // given), written to `out` (2n + 2 values). Solves the linear system of BENCHMARKS.md: with the
-  // fixed-size kernel (swimmer_fixed_size.hpp) for n <= kSwimmerFixedMaxSegments, otherwise with
-  // derivativeReference.
+  // given), written to `out` (2n + 2 values). Solves the linear system of docs/benchmarks.md: with
+  // the fixed-size kernel (swimmer_fixed_size.hpp) for n <= kSwimmerFixedMaxSegments, otherwise
+  // with derivativeReference.
   void derivative(std::span<const double> state, std::span<const double> torque,
                   std::span<double> out);
   // The same with run-time sized Eigen matrices and Eigen's PartialPivLU: the original

@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "gpfd/env/afterstate_game.hpp"
 #include "gpfd/env/environment.hpp"
 #include "gpfd/env/tetris_board.hpp"
 
@@ -15,9 +16,9 @@ struct TetrisConfig {
   TetrisFeatures state = TetrisFeatures::Paper;
   int maxSteps = 0;  // Truncation after this many pieces; 0 = none (ours).
 
-  static TetrisConfig fromParams(const Params& params);  // Throws InputError.
-  Params toParams() const;
-  static std::vector<ParamSpec> paramSpecs();
+  // The parameters, declared once: names, defaults, ranges and meanings.
+  static const ParamTable<TetrisConfig>& table();
+  static TetrisConfig fromParams(const Params& params) { return table().read(params); }
 };
 
 // One legal placement of the current piece and what it leads to.
@@ -45,13 +46,15 @@ struct TetrisAfterstates {
 // State: the 2c + 2 variables of `state` (TetrisFeatures). Action: (orientation, column), an
 // orientation index of orientationsOf(piece()) and the piece's leftmost column. Reward: rows
 // removed. The next piece is drawn from an engine seeded by reset(). After game over, step()
-// changes nothing and reports terminated with reward 0.
-class Tetris final : public Environment {
+// changes nothing and reports terminated with reward 0. Learned with lambda-policy iteration over
+// its afterstates (AfterstateGame).
+class Tetris final : public Environment, public AfterstateGame {
  public:
   explicit Tetris(TetrisConfig config = {});
+  static EnvInfo info();  // Name, description, factory and default learner, for the registry.
 
   std::string name() const override { return "tetris"; }
-  Params params() const override { return config_.toParams(); }
+  Params params() const override { return TetrisConfig::table().write(config_); }
   const std::vector<std::string>& stateNames() const override { return names_; }
   ActionSpace actionSpace() const override;
   void reset(Rng& rng) override;
@@ -62,6 +65,14 @@ class Tetris final : public Environment {
   void setState(std::span<const double> state) override;
   StepResult step(std::span<const double> action) override;
   void sampleAction(Rng& rng, std::span<double> action) const override;
+  AfterstateGame* afterstateGame() override { return this; }
+
+  // AfterstateGame: every placement of the current piece.
+  AfterstateView candidates() override;
+  StepResult play(std::size_t index) override;
+  // In the Bertsekas layout, Bertsekas & Ioffe's (1996) hand-tuned start: all 0 except max
+  // height -10 and holes -1. None in the paper's layout.
+  std::vector<double> knownValueWeights() const override;
 
   const TetrisConfig& config() const { return config_; }
   const TetrisBoard& board() const { return board_; }
@@ -86,6 +97,10 @@ class Tetris final : public Environment {
   bool gameOver_ = false;
   int steps_ = 0;
   std::vector<double> state_;
+  // The last candidates(): placements with their rewards and game-over flags.
+  TetrisAfterstates afterstates_;
+  std::vector<double> rewards_;
+  std::vector<std::uint8_t> ends_;
 };
 
 }  // namespace gpfd::env

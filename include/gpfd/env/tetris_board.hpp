@@ -1,5 +1,5 @@
 // env: a Tetris board as one bit mask per row, with the drop rule and the board features of
-// BENCHMARKS.md.
+// docs/benchmarks.md.
 #pragma once
 
 #include <array>

@@ -12,8 +12,8 @@ namespace gpfd::expr {
 
 // `void gpfd_features(const double* s, double* f)`, f[k] = feature k; self-contained C99.
 std::string exportC(const Genome& genome, const VariableNames& names);
-// `def features(s)`: s[..., i] is variable i (works on one state or a batch); returns a list of
-// arrays, one per feature. Needs NumPy.
+// `def features(s)`: s[..., i] is variable i (works on one state or a batch); returns one float64
+// array of shape s.shape[:-1] + (k,), feature k in [..., k]. Needs NumPy.
 std::string exportPython(const Genome& genome, const VariableNames& names);
 // One `\phi_k(s) = ...` line per feature, in an align* environment.
 std::string exportLatex(const Genome& genome, const VariableNames& names);

@@ -52,20 +52,27 @@ struct OpInfo {
   std::string_view sexpr;  // Symbol in S-expressions ("+" for Add, else the name).
   int arity;
   int precedence;  // Infix binary operators: 1 for + -, 2 for * /; 0 for function calls.
+  // Computed by a function call, not by a few instructions: gpfd's sin and cos (trig.hpp) and
+  // libm's exp, log and tanh. Generated code calls the same function as the interpreter.
+  bool call;
 };
 
 inline constexpr OpInfo kOpInfo[kOpCount] = {
-    {"const", "const", 0, 0}, {"var", "var", 0, 0},   {"add", "+", 2, 1},
-    {"sub", "-", 2, 1},       {"mul", "*", 2, 2},     {"div", "/", 2, 2},
-    {"min", "min", 2, 0},     {"max", "max", 2, 0},   {"absdiff", "absdiff", 2, 0},
-    {"sin", "sin", 1, 0},     {"cos", "cos", 1, 0},   {"sqrt", "sqrt", 1, 0},
-    {"neg", "neg", 1, 0},     {"abs", "abs", 1, 0},   {"exp", "exp", 1, 0},
-    {"log", "log", 1, 0},     {"tanh", "tanh", 1, 0}, {"square", "square", 1, 0},
+    {"const", "const", 0, 0, false},     {"var", "var", 0, 0, false},
+    {"add", "+", 2, 1, false},           {"sub", "-", 2, 1, false},
+    {"mul", "*", 2, 2, false},           {"div", "/", 2, 2, false},
+    {"min", "min", 2, 0, false},         {"max", "max", 2, 0, false},
+    {"absdiff", "absdiff", 2, 0, false}, {"sin", "sin", 1, 0, true},
+    {"cos", "cos", 1, 0, true},          {"sqrt", "sqrt", 1, 0, false},
+    {"neg", "neg", 1, 0, false},         {"abs", "abs", 1, 0, false},
+    {"exp", "exp", 1, 0, true},          {"log", "log", 1, 0, true},
+    {"tanh", "tanh", 1, 0, true},        {"square", "square", 1, 0, false},
 };
 
 constexpr const OpInfo& info(Op op) { return kOpInfo[static_cast<int>(op)]; }
 constexpr int arity(Op op) { return info(op).arity; }
 constexpr bool isTerminal(Op op) { return arity(op) == 0; }
+constexpr bool isCall(Op op) { return info(op).call; }
 
 // Finds an operator by its name or S-expression symbol ("add" or "+"); terminals excluded.
 std::optional<Op> opFromName(std::string_view name);

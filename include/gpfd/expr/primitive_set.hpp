@@ -26,8 +26,6 @@ struct PrimitiveSet {
   // "all" = every operator; or a comma-separated list of operator names/symbols
   // ("add,mul,sin" or "+,*,sin"). Throws InputError naming an unknown set or operator.
   static PrimitiveSet named(const std::string& spec);
-  // Names of the built-in sets.
-  static std::vector<std::string> builtinNames();
 
   bool contains(Op op) const;
   // The functions of the given arity.

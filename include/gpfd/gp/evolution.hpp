@@ -43,7 +43,6 @@ enum class Operator {
   Shrinkage
 };
 inline constexpr int kOperatorCount = 5;
-const char* operatorName(Operator op);
 
 // Probabilities of the operators, in the order of Operator, from the config.
 std::vector<double> operatorProbabilities(const GpConfig& config);

@@ -27,6 +27,7 @@ class TomlReader {
   void read(const std::string& section, const std::string& key, std::uint64_t& out);
   void read(const std::string& section, const std::string& key, double& out, double lo, double hi);
   void read(const std::string& section, const std::string& key, std::vector<double>& out);
+  void read(const std::string& section, const std::string& key, std::vector<std::string>& out);
   // A free-form table of scalars (environment or learner parameters) as text values; arrays
   // become comma-separated lists.
   void readParams(const std::string& section, std::map<std::string, std::string>& out);
@@ -54,6 +55,8 @@ class TomlWriter {
   void write(const std::string& section, const std::string& key, std::int64_t value);
   void write(const std::string& section, const std::string& key, double value);
   void write(const std::string& section, const std::string& key, const std::vector<double>& value);
+  void write(const std::string& section, const std::string& key,
+             const std::vector<std::string>& value);
   void writeParams(const std::string& section, const std::map<std::string, std::string>& params);
   std::string text() const;
 

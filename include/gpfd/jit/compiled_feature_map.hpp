@@ -9,8 +9,8 @@
 #include <optional>
 #include <string>
 
+#include "gpfd/features/feature_map.hpp"
 #include "gpfd/jit/fast_interpreter.hpp"
-#include "gpfd/jit/feature_map.hpp"
 #include "gpfd/jit/x86_compiler.hpp"
 
 namespace gpfd::jit {
@@ -20,7 +20,7 @@ struct CompileOptions {
   bool batch = true;   // Also compile the AVX2 batch kernel when the CPU has AVX2.
 };
 
-class CompiledFeatureMap final : public FeatureMap {
+class CompiledFeatureMap final : public features::FeatureMap {
  public:
   // Throws LowerError (a std::invalid_argument) before compiling anything when the genome is
   // malformed, reads a variable >= inputDim, or exceeds the limits of program.hpp.

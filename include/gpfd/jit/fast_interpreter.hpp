@@ -4,12 +4,12 @@
 // It is also the fallback of CompiledFeatureMap when native code cannot be used.
 #pragma once
 
-#include "gpfd/jit/feature_map.hpp"
+#include "gpfd/features/feature_map.hpp"
 #include "gpfd/jit/program.hpp"
 
 namespace gpfd::jit {
 
-class FastInterpretedFeatureMap final : public FeatureMap {
+class FastInterpretedFeatureMap final : public features::FeatureMap {
  public:
   // Throws LowerError when the genome is malformed or reads a variable >= inputDim.
   FastInterpretedFeatureMap(const expr::Genome& genome, std::size_t inputDim);

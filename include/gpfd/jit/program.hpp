@@ -44,7 +44,7 @@ struct Program {
   std::size_t inputDim = 0;            // State variables the program may read.
   std::size_t nodeCount = 0;           // Nodes of the genome it came from.
 
-  bool hasCalls() const;  // Whether some instruction calls libm (sin, cos, exp, log, tanh).
+  bool hasCalls() const;  // Whether some instruction is a call (expr::isCall).
 };
 
 // Lowers `genome` for states of `inputDim` variables. Throws LowerError when the genome is

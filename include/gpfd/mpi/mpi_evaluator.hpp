@@ -48,8 +48,6 @@ class MpiEvaluator final : public gp::Evaluator {
   int workers() const { return static_cast<int>(credit_.size()); }
   // Tasks the workers evaluate at once, summed over the workers (their threads).
   int capacity() const;
-  // Tasks sent so far by this evaluator (numbering for failure injection, see worker.hpp).
-  std::uint64_t tasksSent() const { return nextTask_; }
 
  private:
   const Session& session_;

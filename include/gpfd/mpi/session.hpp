@@ -26,8 +26,6 @@ class Session {
   int rank() const { return rank_; }  // In MPI_COMM_WORLD; 0 is the master.
   int size() const { return size_; }  // Number of processes in MPI_COMM_WORLD.
   bool isMaster() const { return rank_ == 0; }
-  // Processes of MPI_COMM_WORLD on this process's node (shared-memory domain), this one included.
-  int ranksOnNode() const { return ranksOnNode_; }
   // Worker processes (rank > 0) on this process's node.
   int workersOnNode() const { return workersOnNode_; }
   // This node's host name (MPI_Get_processor_name), for messages.
@@ -36,7 +34,6 @@ class Session {
  private:
   int rank_ = 0;
   int size_ = 1;
-  int ranksOnNode_ = 1;
   int workersOnNode_ = 0;
   std::string host_;
 };

@@ -1,23 +1,17 @@
 // rl: the view of a game that lambda-policy iteration needs: at each decision, every candidate
 // move with the variables of the state it leads to (the afterstate), its reward and whether it
-// ends the game. Tetris provides one (tetris_afterstates.hpp); tests provide tiny ones.
+// ends the game. An environment's AfterstateGame provides one (game_afterstates.hpp); tests
+// provide tiny ones.
 #pragma once
 
 #include <cstddef>
-#include <cstdint>
 
+#include "gpfd/env/afterstate_game.hpp"
 #include "gpfd/util/rng.hpp"
 
 namespace gpfd::rl {
 
-// The candidates of the current decision. Pointers stay valid until the next non-const call on
-// the problem.
-struct AfterstateView {
-  std::size_t count = 0;               // 0: no move is possible (the game is over).
-  const double* states = nullptr;      // count x stateDim(), row-major.
-  const double* rewards = nullptr;     // count values.
-  const std::uint8_t* ends = nullptr;  // count flags: 1 when the move ends the game.
-};
+using env::AfterstateView;
 
 class AfterstateProblem {
  public:

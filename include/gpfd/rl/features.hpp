@@ -6,8 +6,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "gpfd/jit/feature_map.hpp"
+#include "gpfd/features/feature_map.hpp"
 #include "gpfd/rl/learning_curve.hpp"
+#include "gpfd/util/params.hpp"
 
 namespace gpfd::rl {
 
@@ -22,13 +23,23 @@ struct FeatureOptions {
   bool normalise = false;
 };
 
+// Declares `bias` and `normalise` in a learner's parameter table; `options` returns the config's
+// FeatureOptions (a generic lambda, as the fields of a ParamTable).
+template <typename Config, typename Options>
+void declareFeatureParams(ParamTable<Config>& table, Options options) {
+  table.flag(
+      "bias", [options](auto& c) -> auto& { return options(c).bias; }, "append a constant feature");
+  table.flag(
+      "normalise", [options](auto& c) -> auto& { return options(c).normalise; },
+      "running mean/std feature normalisation");
+}
+
 // Not thread-safe (it keeps statistics); one per learning run.
 class FeaturePipeline {
  public:
-  FeaturePipeline(const jit::FeatureMap& map, const FeatureOptions& options);
+  FeaturePipeline(const features::FeatureMap& map, const FeatureOptions& options);
 
   std::size_t stateDim() const { return map_->inputDim(); }
-  std::size_t rawDim() const { return raw_; }
   std::size_t dim() const { return raw_ + (options_.bias ? 1 : 0); }
   const FeatureOptions& options() const { return options_; }
 
@@ -51,7 +62,7 @@ class FeaturePipeline {
  private:
   bool finish(double* row);  // Record statistics, normalise, append the bias; false if not finite.
 
-  const jit::FeatureMap* map_;
+  const features::FeatureMap* map_;
   FeatureOptions options_;
   std::size_t raw_;
   std::vector<double> shift_, scale_;  // Current snapshot.

@@ -7,16 +7,14 @@
 
 #include <vector>
 
-#include "gpfd/jit/feature_map.hpp"
+#include "gpfd/env/environment.hpp"
+#include "gpfd/features/feature_map.hpp"
 
 namespace gpfd::rl {
 
-struct StateRange {
-  double low = 0.0;
-  double high = 1.0;
-};
+using env::StateRange;
 
-class FourierBasis final : public jit::FeatureMap {
+class FourierBasis final : public features::FeatureMap {
  public:
   enum class Coupling { Full, Independent };
   // `ranges` scale each variable to [0, 1] (values outside are clamped). Full coupling has

@@ -9,9 +9,10 @@
 #include <span>
 #include <vector>
 
-#include "gpfd/jit/feature_map.hpp"
+#include "gpfd/features/feature_map.hpp"
 #include "gpfd/rl/afterstate_problem.hpp"
 #include "gpfd/rl/features.hpp"
+#include "gpfd/rl/learner.hpp"
 #include "gpfd/rl/learning_curve.hpp"
 #include "gpfd/util/rng.hpp"
 
@@ -27,8 +28,8 @@ struct LambdaPolicyIterationConfig {
   // Moves per game at most (good policies on large boards play very long games). A capped game
   // is not terminal: its last afterstate keeps its own value as target.
   std::int64_t maxMovesPerGame = 100000;
-  // How the greedy choice scores a move that ends the game. Zero (default, BENCHMARKS.md): reward
-  // + 0, literally. Avoid: such a move is taken
+  // How the greedy choice scores a move that ends the game. Zero (default, docs/benchmarks.md):
+  // reward + 0, literally. Avoid: such a move is taken
   // only when every move ends the game (a linear J can be negative, e.g. the Bertsekas-Ioffe
   // start is <= 0 everywhere, and scoring game over as 0 would then make the policy end games on
   // purpose). Either way the lambda-returns use J(game over) = 0.
@@ -45,7 +46,8 @@ struct LambdaPolicyIterationConfig {
 // the lambda-returns by least squares after each batch of games. Row i of the curve is the batch
 // played with the weights after i fits; its mean return is the mean reward (rows) per game.
 // InputError when the map's input does not match the problem or initialWeights has a wrong size.
-LearningCurve trainLambdaPolicyIteration(AfterstateProblem& problem, const jit::FeatureMap& map,
+LearningCurve trainLambdaPolicyIteration(AfterstateProblem& problem,
+                                         const features::FeatureMap& map,
                                          const LambdaPolicyIterationConfig& config, Rng& rng);
 
 // Greedy play with fixed weights: mean reward per game over `games` games.
@@ -55,7 +57,7 @@ struct GreedyPlayResult {
   std::int64_t moves = 0;
   bool diverged = false;
 };
-GreedyPlayResult playGreedy(AfterstateProblem& problem, const jit::FeatureMap& map,
+GreedyPlayResult playGreedy(AfterstateProblem& problem, const features::FeatureMap& map,
                             const LinearWeights& weights, const LambdaPolicyIterationConfig& config,
                             int games, Rng& rng);
 
@@ -69,6 +71,11 @@ void lambdaReturns(std::span<const double> values, std::span<const double> rewar
                    double lambda, std::span<double> targets);
 
 // Accumulates the normal equations of a ridge least-squares fit, a block of rows at a time.
+// The registry entry "lpi": every field of LambdaPolicyIterationConfig as a parameter, plus
+// `start` (zero, or the environment's known value weights over its raw state), on environments
+// that offer an afterstate game.
+LearnerInfo lambdaPolicyIterationLearner();
+
 class LeastSquaresAccumulator {
  public:
   explicit LeastSquaresAccumulator(Eigen::Index dim);

@@ -41,8 +41,7 @@ struct LearningCurve {
   bool diverged = false;
   std::string divergedReason;
 
-  // Best and last mean return over the rows (-inf for an empty curve).
-  double bestMeanReturn() const;
+  // The last row's mean return (-inf for an empty curve).
   double finalMeanReturn() const;
 };
 

@@ -6,8 +6,9 @@
 #include <functional>
 
 #include "gpfd/env/environment.hpp"
-#include "gpfd/jit/feature_map.hpp"
+#include "gpfd/features/feature_map.hpp"
 #include "gpfd/rl/features.hpp"
+#include "gpfd/rl/learner.hpp"
 #include "gpfd/rl/learning_curve.hpp"
 #include "gpfd/rl/linear_policy.hpp"
 #include "gpfd/rl/rprop.hpp"
@@ -35,12 +36,12 @@ struct PolicyGradientConfig {
 // otherwise). Row u of the curve is the batch played with the policy after u updates; the final
 // weights are those of the last row. A non-finite feature, action or return marks the curve
 // diverged and ends it; nothing throws for numerical trouble.
-LearningCurve trainPolicyGradient(env::Environment& env, const jit::FeatureMap& map,
+LearningCurve trainPolicyGradient(env::Environment& env, const features::FeatureMap& map,
                                   const PolicyGradientConfig& config, Rng& rng);
 
 // The gradient estimate (the one an update would use) at the given policy parameters, from
 // `episodes` sampled episodes: for tests and diagnostics. Empty when a run diverged.
-Eigen::VectorXd estimatePolicyGradient(env::Environment& env, const jit::FeatureMap& map,
+Eigen::VectorXd estimatePolicyGradient(env::Environment& env, const features::FeatureMap& map,
                                        const PolicyGradientConfig& config,
                                        const Eigen::VectorXd& parameters, int episodes, Rng& rng);
 
@@ -55,8 +56,12 @@ struct EvaluationResult {
 // Plays `episodes` episodes with given weights (as trainPolicyGradient returns them, with the
 // same config.policy and config.features), greedy (the mean action / most probable choice) or
 // stochastic.
-EvaluationResult evaluatePolicy(env::Environment& env, const jit::FeatureMap& map,
+EvaluationResult evaluatePolicy(env::Environment& env, const features::FeatureMap& map,
                                 const LinearWeights& weights, const PolicyGradientConfig& config,
                                 int episodes, bool greedy, Rng& rng);
+
+// The registry entry "pg": every field of PolicyGradientConfig as a parameter, on environments
+// whose actions are a box or one discrete choice.
+LearnerInfo policyGradientLearner();
 
 }  // namespace gpfd::rl

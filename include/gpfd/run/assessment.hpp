@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "gpfd/jit/feature_map.hpp"
+#include "gpfd/features/feature_map.hpp"
 #include "gpfd/rl/learning_curve.hpp"
 #include "gpfd/run/learning_task.hpp"
 #include "gpfd/run/statistics.hpp"
@@ -17,7 +17,7 @@ namespace gpfd::run {
 
 struct FeatureSet {
   std::string name;
-  std::shared_ptr<const jit::FeatureMap> map;
+  std::shared_ptr<const features::FeatureMap> map;
 };
 
 // The Fourier basis of `order` over the task's state (typical state ranges; full coupling up to

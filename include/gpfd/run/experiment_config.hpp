@@ -22,12 +22,15 @@ enum class TrialMeasure {
 struct ExperimentConfig {
   std::string name = "cartpole";
   std::uint64_t seed = 1;
+  // Plug-ins to load before anything else is checked (run/plugin.hpp); a relative path is taken
+  // from the config file's directory, and stored absolute.
+  std::vector<std::string> plugins;
 
   std::string env = "cartpole";
   std::map<std::string, std::string> envParams;
 
-  std::string learner = "pg";  // pg | lpi
-  // The short-trial budget and settings of the learner (rl::apply*Param keys).
+  std::string learner = "pg";  // A registered learner (gpfd learners).
+  // The short-trial budget and settings of the learner (its declared parameters).
   std::map<std::string, std::string> learnerParams;
 
   int trials = 5;  // K short learning trials per fitness evaluation (the paper: 4-10).

@@ -8,7 +8,8 @@
 #include <vector>
 
 #include "gpfd/expr/genome.hpp"
-#include "gpfd/jit/feature_map.hpp"
+#include "gpfd/features/feature_map.hpp"
+#include "gpfd/rl/learner.hpp"
 #include "gpfd/rl/learning_curve.hpp"
 #include "gpfd/run/experiment_config.hpp"
 #include "gpfd/run/state_sample.hpp"
@@ -34,11 +35,11 @@ class LearningTask {
   // The features a learner sees for a genome in GP and validation: the genome, normalised when
   // config.normalise, followed by the original variables when config.withOriginal.
   expr::Genome prepared(const expr::Genome& genome) const;
-  std::shared_ptr<const jit::FeatureMap> featureMap(const expr::Genome& genome) const;
+  std::shared_ptr<const features::FeatureMap> featureMap(const expr::Genome& genome) const;
 
   // One learning run on a fresh environment, seeing states through `map` (inputDim() ==
   // stateDim()). Thread-safe: shares nothing between calls.
-  rl::LearningCurve train(const jit::FeatureMap& map, Rng& rng) const;
+  rl::LearningCurve train(const features::FeatureMap& map, Rng& rng) const;
   // The trial's performance under the configured measure; -inf when the run diverged or is empty.
   double score(const rl::LearningCurve& curve) const;
 
@@ -47,13 +48,15 @@ class LearningTask {
   std::map<std::string, std::string> learnerParams_;
   std::vector<std::string> stateNames_;
   std::shared_ptr<const FeatureSample> sample_;
+  std::shared_ptr<const rl::Learner> learner_;  // From the learner registry.
 };
 
 // The features a learner sees for a genome: its compiled features, followed by the original
 // state variables when `withOriginal` (only once when the genome is the variables themselves,
 // as a run's best.features is when no discovered set beat them).
-std::shared_ptr<const jit::FeatureMap> genomeFeatureMap(const expr::Genome& genome,
-                                                        std::size_t stateDim, bool withOriginal);
+std::shared_ptr<const features::FeatureMap> genomeFeatureMap(const expr::Genome& genome,
+                                                             std::size_t stateDim,
+                                                             bool withOriginal);
 
 // The fitness of GP: the mean score of config.trials short trials of task.featureMap(genome),
 // trial t seeded from deriveSeed(rng(), t). Any non-finite or diverged trial makes the fitness

@@ -58,7 +58,7 @@ class Validator {
   Validator(const ExperimentConfig& config, int threads, std::uint64_t stream = kValidationStream);
   // scores[set][m] of the feature maps.
   std::vector<std::vector<double>> score(
-      const std::vector<std::shared_ptr<const jit::FeatureMap>>& maps) const;
+      const std::vector<std::shared_ptr<const features::FeatureMap>>& maps) const;
   // scores[set][m] of genomes as GP sees them (task().featureMap); null: the original variables.
   std::vector<std::vector<double>> score(const std::vector<const expr::Genome*>& sets) const;
   const LearningTask& task() const { return task_; }

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Golden trajectories of Acrobot and cart-pole, computed from the equations of
-shared/BENCHMARKS.md alone (plain Python floats and the math module; no gpfd code).
+docs/benchmarks.md alone (plain Python floats and the math module; no gpfd code).
 
 Run from this folder:  python3 make_golden.py
 It rewrites acrobot_golden.csv and cartpole_golden.csv. Every row holds the case name, the step,

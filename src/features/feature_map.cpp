@@ -1,11 +1,9 @@
-#include "gpfd/jit/feature_map.hpp"
+#include "gpfd/features/feature_map.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 
-#include "gpfd/expr/eval.hpp"
-
-namespace gpfd::jit {
+namespace gpfd::features {
 
 void FeatureMap::evaluateBatch(const double* states, std::size_t n, double* out) const {
   const std::size_t in = inputDim(), k = outputDim();
@@ -35,16 +33,4 @@ void ConcatFeatureMap::evaluate(const double* state, double* features) const {
   }
 }
 
-InterpretedFeatureMap::InterpretedFeatureMap(expr::Genome genome, std::size_t inputDim)
-    : genome_(std::move(genome)), inputDim_(inputDim) {
-  const auto problem =
-      expr::checkGenome(genome_, {0, 1 << 20, expr::kMaxParseDepth, expr::kMaxParseSize},
-                        static_cast<int>(inputDim_));
-  if (!problem.empty()) throw std::invalid_argument("InterpretedFeatureMap: " + problem);
-}
-
-void InterpretedFeatureMap::evaluate(const double* state, double* features) const {
-  expr::evaluate(genome_, state, features);
-}
-
-}  // namespace gpfd::jit
+}  // namespace gpfd::features

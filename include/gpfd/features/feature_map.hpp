@@ -1,13 +1,12 @@
-// jit: the feature-map interface through which learners see states, and the trivial maps.
+// features: the interface through which learners see states, and the trivial maps. Compiled
+// genomes (jit) and generic bases (rl's Fourier basis) implement it; learners depend only on it.
 #pragma once
 
 #include <cstddef>
 #include <memory>
 #include <vector>
 
-#include "gpfd/expr/genome.hpp"
-
-namespace gpfd::jit {
+namespace gpfd::features {
 
 // Maps a state of inputDim() values to outputDim() features. Contract: evaluate() is const and
 // safe to call from several threads at once; it reads only state[0, inputDim()) and writes only
@@ -21,6 +20,9 @@ class FeatureMap {
   // n states laid out one after another (n * inputDim() values) to n feature rows
   // (n * outputDim() values). The default calls evaluate() per state.
   virtual void evaluateBatch(const double* states, std::size_t n, double* out) const;
+  // Whether the features are the state variables themselves, in order (RawFeatureMap): a learner
+  // may then start from weights known for the state (AfterstateGame::knownValueWeights).
+  virtual bool isIdentity() const { return false; }
 };
 
 // The raw state variables as features (the identity).
@@ -30,6 +32,7 @@ class RawFeatureMap final : public FeatureMap {
   std::size_t inputDim() const override { return dim_; }
   std::size_t outputDim() const override { return dim_; }
   void evaluate(const double* state, double* features) const override;
+  bool isIdentity() const override { return true; }
 
  private:
   std::size_t dim_;
@@ -49,19 +52,4 @@ class ConcatFeatureMap final : public FeatureMap {
   std::size_t outputDim_ = 0;
 };
 
-// A genome's features computed by the reference interpreter (expr::evaluate). The genome must
-// have been checked against `inputDim` (expr::checkGenome) before.
-class InterpretedFeatureMap final : public FeatureMap {
- public:
-  InterpretedFeatureMap(expr::Genome genome, std::size_t inputDim);
-  std::size_t inputDim() const override { return inputDim_; }
-  std::size_t outputDim() const override { return genome_.featureCount(); }
-  void evaluate(const double* state, double* features) const override;
-  const expr::Genome& genome() const { return genome_; }
-
- private:
-  expr::Genome genome_;
-  std::size_t inputDim_;
-};
-
-}  // namespace gpfd::jit
+}  // namespace gpfd::features

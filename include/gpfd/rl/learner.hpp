@@ -1,0 +1,82 @@
+// rl: the learner registry. Every learner is reached by name through it (`gpfd train`, `assess`,
+// `evolve`, `reproduce`, configs): it declares its parameters once (parsing, printing, checking,
+// --help), what it needs from an environment, the parameter that sets its budget, and how it
+// trains. The built-in learners are registered on first use, one line each in
+// src/rl/learner_registry.cpp; plug-ins and programs add their own with add() (docs/learners.md).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gpfd/env/environment.hpp"
+#include "gpfd/features/feature_map.hpp"
+#include "gpfd/rl/learning_curve.hpp"
+#include "gpfd/util/params.hpp"
+#include "gpfd/util/rng.hpp"
+
+namespace gpfd::rl {
+
+// Called with each row of a learning curve as soon as it is complete (progress output).
+using PointCallback = std::function<void(const CurvePoint&)>;
+
+// Greedy play with trained weights.
+struct Evaluation {
+  int episodes = 0;
+  double meanReturn = 0.0;
+  std::int64_t steps = 0;
+  bool diverged = false;
+};
+
+// A learner with its settings applied. Its members are const and keep no state between calls,
+// so one instance serves many runs on many threads.
+class Learner {
+ public:
+  virtual ~Learner() = default;
+  // One learning run from scratch on `env` (a fresh instance the learner can learn on), seeing
+  // states through `map` (map.inputDim() == env.stateDim()). Numerical trouble marks the curve
+  // diverged and never throws; bad settings throw InputError.
+  virtual LearningCurve train(env::Environment& env, const features::FeatureMap& map, Rng& rng,
+                              const PointCallback& onPoint = {}) const = 0;
+  // Plays `episodes` episodes greedily with `weights` as train() returned them.
+  virtual Evaluation evaluate(env::Environment& env, const features::FeatureMap& map,
+                              const LinearWeights& weights, int episodes, Rng& rng) const = 0;
+};
+
+// What the registry knows about one learner.
+struct LearnerInfo {
+  std::string name;
+  std::string description;
+  std::vector<ParamSpec> params;
+  // Makes the learner from its parameters (names already checked against `params`); InputError
+  // for a value it cannot take.
+  std::function<std::unique_ptr<Learner>(const Params&)> make;
+  // What it needs from an environment, in words, and why it cannot learn on a given one (empty
+  // when it can).
+  std::string needs;
+  std::function<std::string(env::Environment&)> unsuitable;
+  // The parameter that sets the length of a run (`gpfd assess --budget`), and what one row of its
+  // learning curve after the first stands for (plots).
+  std::string budgetParam;
+  std::string rowName;
+};
+
+// info(name) and names() come from NamedRegistry.
+class LearnerRegistry : public NamedRegistry<LearnerInfo> {
+ public:
+  LearnerRegistry() : NamedRegistry("learner") {}
+  static LearnerRegistry& global();
+
+  // Throws InputError when the name is taken or the entry is incomplete.
+  void add(LearnerInfo info);
+  // Checks the parameter names against info(name).params (InputError "<name>.<key>" on an unknown
+  // one) and makes the learner.
+  std::unique_ptr<Learner> make(const std::string& name, const Params& params) const;
+  // InputError when learner `name` cannot learn on `env`.
+  void checkSuitable(const std::string& name, env::Environment& env) const;
+};
+
+}  // namespace gpfd::rl

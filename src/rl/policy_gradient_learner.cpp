@@ -1,0 +1,114 @@
+// The registry entry of policy gradient with Rprop: its parameters and how it trains.
+#include "gpfd/rl/policy_gradient.hpp"
+
+namespace gpfd::rl {
+namespace {
+
+const ParamTable<PolicyGradientConfig>& table() {
+  static const auto table = [] {
+    ParamTable<PolicyGradientConfig> t("pg");
+    t.integer(
+         "updates", [](auto& c) -> auto& { return c.updates; }, 0, 1000000,
+         "policy updates; the curve has updates + 1 rows")
+        .integer(
+            "episodes", [](auto& c) -> auto& { return c.episodesPerUpdate; }, 1, 1000000,
+            "episodes per update (the paper's: 10)")
+        .integer(
+            "max_episode_steps", [](auto& c) -> auto& { return c.maxEpisodeSteps; }, 1, 1000000000,
+            "safety cap on an episode's steps")
+        .integer(
+            "max_total_steps", [](auto& c) -> auto& { return c.maxTotalSteps; }, 0,
+            1000000000000000, "stop once this many steps were played (0: no cap)")
+        .real(
+            "discount", [](auto& c) -> auto& { return c.discount; }, 0.0, 1.0,
+            "discount of the return in the gradient")
+        .choice(
+            "baseline", [](auto& c) -> auto& { return c.optimalBaseline; },
+            std::vector<std::pair<std::string, bool>>{{"optimal", true}, {"none", false}},
+            "optimal: Peters & Schaal's per-parameter baseline; none")
+        .custom(
+            "rprop", "large | small",
+            "Rprop step sizes (min, initial, max): large = (0.01, 0.1, 0.5), small = (0.002, "
+            "0.02, 0.1), the paper's two",
+            [](PolicyGradientConfig& c, const std::string& text, const std::string& where) {
+              if (text != "large" && text != "small") {
+                throw InputError("rprop must be one of large | small, got '" + text + "'", where);
+              }
+              c.rprop = text == "large" ? RpropConfig::paperLarge() : RpropConfig::paperSmall();
+            },
+            [](const PolicyGradientConfig& c) {
+              const auto same = [&](const RpropConfig& r) {
+                return c.rprop.deltaMin == r.deltaMin && c.rprop.deltaInitial == r.deltaInitial &&
+                       c.rprop.deltaMax == r.deltaMax;
+              };
+              return std::string(same(RpropConfig::paperLarge())   ? "large"
+                                 : same(RpropConfig::paperSmall()) ? "small"
+                                                                   : "custom");
+            })
+        .real(
+            "delta_min", [](auto& c) -> auto& { return c.rprop.deltaMin; }, 0.0, 1e6,
+            "Rprop minimum step")
+        .real(
+            "delta_ini", [](auto& c) -> auto& { return c.rprop.deltaInitial; }, 0.0, 1e6,
+            "Rprop initial step")
+        .real(
+            "delta_max", [](auto& c) -> auto& { return c.rprop.deltaMax; }, 0.0, 1e6,
+            "Rprop maximum step")
+        .real(
+            "std", [](auto& c) -> auto& { return c.policy.initialStd; }, 1e-12, 1e6,
+            "Gaussian standard deviation in normalised action units")
+        .flag(
+            "learn_std", [](auto& c) -> auto& { return c.policy.learnStd; },
+            "learn the log standard deviation per action dimension")
+        .real(
+            "min_std", [](auto& c) -> auto& { return c.policy.minStd; }, 1e-12, 1e6,
+            "lower bound of a learned standard deviation")
+        .real(
+            "max_std", [](auto& c) -> auto& { return c.policy.maxStd; }, 1e-12, 1e6,
+            "upper bound of a learned standard deviation");
+    declareFeatureParams(
+        t, [](auto& c) -> auto& { return c.features; });
+    return t;
+  }();
+  return table;
+}
+
+class PolicyGradientLearner final : public Learner {
+ public:
+  explicit PolicyGradientLearner(PolicyGradientConfig config) : config_(std::move(config)) {}
+
+  LearningCurve train(env::Environment& env, const features::FeatureMap& map, Rng& rng,
+                      const PointCallback& onPoint) const override {
+    PolicyGradientConfig config = config_;
+    config.onPoint = onPoint;
+    return trainPolicyGradient(env, map, config, rng);
+  }
+
+  Evaluation evaluate(env::Environment& env, const features::FeatureMap& map,
+                      const LinearWeights& weights, int episodes, Rng& rng) const override {
+    const auto e = evaluatePolicy(env, map, weights, config_, episodes, true, rng);
+    return {e.episodes, e.meanReturn, e.steps, e.diverged};
+  }
+
+ private:
+  PolicyGradientConfig config_;
+};
+
+}  // namespace
+
+LearnerInfo policyGradientLearner() {
+  return {"pg",
+          "policy gradient with Rprop and the optimal baseline (Girgin & Preux, section 4)",
+          table().specs(),
+          [](const Params& p) { return std::make_unique<PolicyGradientLearner>(table().read(p)); },
+          "actions that are a box of continuous values or one discrete choice",
+          [](env::Environment& env) {
+            const env::ActionSpace space = env.actionSpace();
+            const bool ok = space.continuous() || (space.components == 1 && space.choices >= 2);
+            return std::string(ok ? "" : "its actions are neither a box nor one discrete choice");
+          },
+          "updates",
+          "policy update"};
+}
+
+}  // namespace gpfd::rl
