@@ -201,7 +201,7 @@ void Tetris::sampleAction(Rng& rng, std::span<double> action) const {
   }
 }
 
-void Tetris::afterstates(TetrisAfterstates& out) const {
+void Tetris::afterstatesReference(TetrisAfterstates& out) const {
   const int count = placementCount(piece_, config_.cols);
   const std::size_t dim = state_.size();
   out.featureDim = dim;

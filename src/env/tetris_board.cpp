@@ -73,9 +73,11 @@ DropOutcome TetrisBoard::drop(int piece, int orientation, int column, const int*
   for (int y = 0; y < o.height; ++y) {
     cells_[static_cast<std::size_t>(base + y)] |= o.rowMask[static_cast<std::size_t>(y)] << column;
   }
-  // Remove the full rows among those the piece touched, from the top down.
+  // Remove the full rows among those the piece touched, from the top down (only up to the hidden
+  // rows: a piece can land higher only on a board set up with filled hidden rows, and the game is
+  // over then).
   DropOutcome outcome;
-  for (int r = base + o.height - 1; r >= base; --r) {
+  for (int r = std::min(base + o.height, rows_ + 4) - 1; r >= base; --r) {
     if (cells_[static_cast<std::size_t>(r)] == full_) {
       std::copy(cells_.begin() + r + 1, cells_.begin() + rows_ + 4, cells_.begin() + r);
       cells_[static_cast<std::size_t>(rows_ + 3)] = 0;

@@ -4,7 +4,11 @@ namespace gpfd::rl {
 
 AfterstateView TetrisAfterstateProblem::candidates() {
   if (tetris_->gameOver()) return {};
-  tetris_->afterstates(afterstates_);
+  if (bulk_) {
+    tetris_->afterstates(afterstates_);
+  } else {
+    tetris_->afterstatesReference(afterstates_);
+  }
   const std::size_t n = afterstates_.placements.size();
   rewards_.resize(n);
   ends_.resize(n);

@@ -70,8 +70,12 @@ class Tetris final : public Environment {
   // Sets the board and the current piece exactly (tests, replays); the board must have the
   // configured size.
   void setBoard(const TetrisBoard& board, int piece);
-  // Every legal placement of the current piece, with its afterstate (reuses `out`'s storage).
+  // Every legal placement of the current piece, with its afterstate (reuses `out`'s storage):
+  // in bulk, from the current column heights and holes updated per placement
+  // (tetris_bulk_afterstates.cpp); the same values as afterstatesReference, which drops the piece
+  // on a copy of the board for each placement and scans the result.
   void afterstates(TetrisAfterstates& out) const;
+  void afterstatesReference(TetrisAfterstates& out) const;
   // Throws InputError unless (orientation, column) is a legal placement of the current piece.
   void checkAction(std::span<const double> action) const;
 

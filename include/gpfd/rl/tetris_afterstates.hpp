@@ -11,10 +11,13 @@
 namespace gpfd::rl {
 
 // Wraps a Tetris instance (not owned; it must outlive this). The candidates are every legal
-// placement of the current piece with the state variables of the board after it.
+// placement of the current piece with the state variables of the board after it, computed in bulk
+// (Tetris::afterstates) or, with `bulk` false, placement by placement (the reference; the same
+// values).
 class TetrisAfterstateProblem final : public AfterstateProblem {
  public:
-  explicit TetrisAfterstateProblem(env::Tetris& tetris) : tetris_(&tetris) {}
+  explicit TetrisAfterstateProblem(env::Tetris& tetris, bool bulk = true)
+      : tetris_(&tetris), bulk_(bulk) {}
 
   std::size_t stateDim() const override { return tetris_->stateDim(); }
   void reset(Rng& rng) override { tetris_->reset(rng); }
@@ -23,6 +26,7 @@ class TetrisAfterstateProblem final : public AfterstateProblem {
 
  private:
   env::Tetris* tetris_;
+  bool bulk_;
   env::TetrisAfterstates afterstates_;
   std::vector<double> rewards_;
   std::vector<std::uint8_t> ends_;
