@@ -100,6 +100,8 @@ bool applyPolicyGradientParam(PolicyGradientConfig& c, const std::string& key,
     c.policy.minStd = number(key, value, 1e-12, kHuge);
   } else if (key == "max_std") {
     c.policy.maxStd = number(key, value, 1e-12, kHuge);
+  } else if (key == "lockstep") {
+    c.lockstep = boolean(key, value);
   } else {
     return applyFeatureParam(c.features, key, value);
   }
@@ -157,6 +159,9 @@ std::vector<LearnerParamSpec> policyGradientParamSpecs() {
           {"learn_std", "learn log std per action dimension (default false)"},
           {"min_std", "lower bound of a learned std (default 0.01)"},
           {"max_std", "upper bound of a learned std (default 2)"},
+          {"lockstep",
+           "play an update's episodes side by side (default true; false: one after another, the "
+           "reference; the results are the same)"},
           {"bias", "append a constant feature (default true)"},
           {"normalise", "running mean/std feature normalisation (default false)"}};
 }

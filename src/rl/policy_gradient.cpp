@@ -1,27 +1,19 @@
 #include "gpfd/rl/policy_gradient.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <vector>
 
+#include "episode_players.hpp"
 #include "gpfd/rl/gradient_estimator.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::rl {
 namespace {
 
-struct EpisodeOutcome {
-  double undiscounted = 0.0;
-  double discounted = 0.0;
-  std::int64_t steps = 0;
-  bool ok = true;  // False: a non-finite feature, action or reward.
-};
-
-// Buffers of one run, allocated once; the step loop allocates nothing.
-struct Workspace {
-  std::vector<double> phi, action;
-  Eigen::VectorXd eligibility;
-};
+// Episodes played per call of a player at most (evaluations of many episodes go in chunks).
+constexpr std::size_t kMaxLanes = 64;
 
 void checkDimensions(const env::Environment& env, const jit::FeatureMap& map) {
   if (map.inputDim() != env.stateDim()) {
@@ -32,39 +24,42 @@ void checkDimensions(const env::Environment& env, const jit::FeatureMap& map) {
   }
 }
 
-// One episode. When `sampling`, the gradient of log pi is summed into ws.eligibility.
-EpisodeOutcome runEpisode(env::Environment& env, FeaturePipeline& features, LinearPolicy& policy,
-                          Rng& rng, bool sampling, int maxSteps, double discount, Workspace& ws) {
-  EpisodeOutcome outcome;
-  if (sampling) ws.eligibility.setZero();
-  env.reset(rng);
-  const std::span<const double> action(ws.action.data(), policy.actionComponents());
-  double weight = 1.0;
-  for (int t = 0; t < maxSteps; ++t) {
-    if (!features.evaluate(env.state().data(), ws.phi.data())) {
-      outcome.ok = false;
-      return outcome;
-    }
-    const bool fine =
-        sampling ? policy.sample(rng, ws.phi.data(), ws.action.data(), ws.eligibility.data())
-                 : policy.greedy(ws.phi.data(), ws.action.data());
-    if (!fine) {
-      outcome.ok = false;
-      return outcome;
-    }
-    const env::StepResult result = env.step(action);
-    ++outcome.steps;
-    if (!std::isfinite(result.reward)) {
-      outcome.ok = false;
-      return outcome;
-    }
-    outcome.undiscounted += result.reward;
-    outcome.discounted += weight * result.reward;
-    weight *= discount;
-    if (result.terminated || result.truncated) break;
+// The learner's objects for one run, and the player that plays its episodes.
+struct Learner {
+  Learner(env::Environment& env, const jit::FeatureMap& map, const PolicyGradientConfig& config,
+          int maxSteps, double discount, std::size_t episodesPerCall)
+      : features(map, config.features), policy(env.actionSpace(), features.dim(), config.policy) {
+    const episodes::Setup setup{&env, &map, &features, &policy, maxSteps, discount};
+    const std::size_t lanes = std::clamp<std::size_t>(episodesPerCall, 1, kMaxLanes);
+    if (config.lockstep) player = episodes::makeLockstepPlayer(setup, lanes);
+    if (!player) player = episodes::makeSequentialPlayer(setup, lanes);
   }
-  return outcome;
-}
+
+  // Plays `count` episodes, episode e seeded by seedOf(e), in chunks of the player's capacity;
+  // calls use(e, outcome, records, index in records) in episode order, up to and including the
+  // first episode that is not ok.
+  template <class Seed, class Use>
+  void play(int count, bool sampling, Seed&& seedOf, Use&& use) {
+    for (int first = 0; first < count;) {
+      const int n = std::min<int>(count - first, static_cast<int>(player->capacity()));
+      seeds.resize(static_cast<std::size_t>(n));
+      for (int e = 0; e < n; ++e) seeds[static_cast<std::size_t>(e)] = seedOf(first + e);
+      player->play(seeds, sampling, records);
+      for (int e = 0; e < n; ++e) {
+        const episodes::Outcome& outcome = records.outcomes[static_cast<std::size_t>(e)];
+        use(first + e, outcome, static_cast<std::size_t>(e));
+        if (!outcome.ok) return;
+      }
+      first += n;
+    }
+  }
+
+  FeaturePipeline features;
+  LinearPolicy policy;
+  std::unique_ptr<episodes::Player> player;
+  std::vector<std::uint64_t> seeds;
+  episodes::Records records;
+};
 
 void exportWeights(const LinearPolicy& policy, const FeaturePipeline& features,
                    LinearWeights& out) {
@@ -85,14 +80,13 @@ LearningCurve trainPolicyGradient(env::Environment& env, const jit::FeatureMap& 
                      "policy gradient");
   }
   const auto start = std::chrono::steady_clock::now();
-  FeaturePipeline features(map, config.features);
-  LinearPolicy policy(env.actionSpace(), features.dim(), config.policy);
+  const std::uint64_t runSeed = rng();
+  Learner learner(env, map, config, config.maxEpisodeSteps, config.discount,
+                  static_cast<std::size_t>(config.episodesPerUpdate));
+  LinearPolicy& policy = learner.policy;
+  FeaturePipeline& features = learner.features;
   Rprop rprop(config.rprop, policy.parameterCount());
   EpisodicGradientEstimator estimator(policy.parameterCount(), config.optimalBaseline);
-  Workspace ws;
-  ws.phi.assign(features.dim(), 0.0);
-  ws.action.assign(policy.actionComponents(), 0.0);
-  ws.eligibility = Eigen::VectorXd::Zero(policy.parameterCount());
   Eigen::VectorXd gradient(policy.parameterCount());
 
   LearningCurve curve;
@@ -100,20 +94,20 @@ LearningCurve trainPolicyGradient(env::Environment& env, const jit::FeatureMap& 
   for (int update = 0; update <= config.updates; ++update) {
     estimator.clear();
     double sum = 0.0;
-    for (int e = 0; e < config.episodesPerUpdate; ++e) {
-      const EpisodeOutcome outcome =
-          runEpisode(env, features, policy, rng, true, config.maxEpisodeSteps, config.discount, ws);
-      curve.steps += outcome.steps;
-      ++curve.episodes;
-      if (!outcome.ok || !std::isfinite(outcome.discounted) ||
-          !std::isfinite(ws.eligibility.sum())) {
-        curve.diverged = true;
-        curve.divergedReason = "non-finite feature, action, return or likelihood gradient";
-        break;
-      }
-      sum += outcome.undiscounted;
-      estimator.addEpisode(ws.eligibility, outcome.discounted);
-    }
+    learner.play(
+        config.episodesPerUpdate, true, [&](int e) { return deriveSeed(runSeed, update, e); },
+        [&](int, const episodes::Outcome& outcome, std::size_t i) {
+          curve.steps += outcome.steps;
+          ++curve.episodes;
+          if (!outcome.ok) {
+            curve.diverged = true;
+            curve.divergedReason = "non-finite feature, action, return or likelihood gradient";
+            return;
+          }
+          sum += outcome.undiscounted;
+          estimator.addEpisode(learner.records.eligibility[i], outcome.discounted);
+          if (config.features.normalise) features.merge(learner.records.moments[i]);
+        });
     if (curve.diverged) break;
     curve.points.push_back(
         {update, curve.episodes, curve.steps, sum / static_cast<double>(config.episodesPerUpdate)});
@@ -145,23 +139,22 @@ Eigen::VectorXd estimatePolicyGradient(env::Environment& env, const jit::Feature
                                        const PolicyGradientConfig& config,
                                        const Eigen::VectorXd& parameters, int episodes, Rng& rng) {
   checkDimensions(env, map);
-  FeaturePipeline features(map, config.features);
-  LinearPolicy policy(env.actionSpace(), features.dim(), config.policy);
-  if (parameters.size() != policy.parameterCount()) {
+  const std::uint64_t base = rng();
+  Learner learner(env, map, config, config.maxEpisodeSteps, config.discount,
+                  static_cast<std::size_t>(std::max(episodes, 1)));
+  if (parameters.size() != learner.policy.parameterCount()) {
     throw InputError("wrong number of policy parameters", "policy gradient");
   }
-  policy.parameters() = parameters;
-  EpisodicGradientEstimator estimator(policy.parameterCount(), config.optimalBaseline);
-  Workspace ws;
-  ws.phi.assign(features.dim(), 0.0);
-  ws.action.assign(policy.actionComponents(), 0.0);
-  ws.eligibility = Eigen::VectorXd::Zero(policy.parameterCount());
-  for (int e = 0; e < episodes; ++e) {
-    const EpisodeOutcome outcome =
-        runEpisode(env, features, policy, rng, true, config.maxEpisodeSteps, config.discount, ws);
-    if (!outcome.ok || !std::isfinite(outcome.discounted)) return {};
-    estimator.addEpisode(ws.eligibility, outcome.discounted);
-  }
+  learner.policy.parameters() = parameters;
+  EpisodicGradientEstimator estimator(learner.policy.parameterCount(), config.optimalBaseline);
+  bool ok = true;
+  learner.play(
+      episodes, true, [&](int e) { return deriveSeed(base, e); },
+      [&](int, const episodes::Outcome& outcome, std::size_t i) {
+        ok = ok && outcome.ok;
+        if (ok) estimator.addEpisode(learner.records.eligibility[i], outcome.discounted);
+      });
+  if (!ok) return {};
   Eigen::VectorXd gradient;
   estimator.gradient(gradient);
   return gradient;
@@ -171,8 +164,10 @@ EvaluationResult evaluatePolicy(env::Environment& env, const jit::FeatureMap& ma
                                 const LinearWeights& weights, const PolicyGradientConfig& config,
                                 int episodes, bool greedy, Rng& rng) {
   checkDimensions(env, map);
-  FeaturePipeline features(map, config.features);
-  LinearPolicy policy(env.actionSpace(), features.dim(), config.policy);
+  const std::uint64_t base = rng();
+  Learner learner(env, map, config, config.maxEpisodeSteps, 1.0,
+                  static_cast<std::size_t>(std::max(episodes, 1)));
+  LinearPolicy& policy = learner.policy;
   if (weights.values.size() != static_cast<std::size_t>(policy.parameterCount())) {
     throw InputError("the weights have " + std::to_string(weights.values.size()) +
                          " values, the policy needs " + std::to_string(policy.parameterCount()),
@@ -181,25 +176,21 @@ EvaluationResult evaluatePolicy(env::Environment& env, const jit::FeatureMap& ma
   for (std::size_t i = 0; i < weights.values.size(); ++i) {
     policy.parameters()[static_cast<Eigen::Index>(i)] = weights.values[i];
   }
-  features.importFrom(weights);
-  Workspace ws;
-  ws.phi.assign(features.dim(), 0.0);
-  ws.action.assign(policy.actionComponents(), 0.0);
-  ws.eligibility = Eigen::VectorXd::Zero(policy.parameterCount());
+  learner.features.importFrom(weights);
   EvaluationResult result;
   double sum = 0.0, sumSquares = 0.0;
-  for (int e = 0; e < episodes; ++e) {
-    const EpisodeOutcome outcome =
-        runEpisode(env, features, policy, rng, !greedy, config.maxEpisodeSteps, 1.0, ws);
-    result.steps += outcome.steps;
-    if (!outcome.ok) {
-      result.diverged = true;
-      break;
-    }
-    ++result.episodes;
-    sum += outcome.undiscounted;
-    sumSquares += outcome.undiscounted * outcome.undiscounted;
-  }
+  learner.play(
+      episodes, !greedy, [&](int e) { return deriveSeed(base, e); },
+      [&](int, const episodes::Outcome& outcome, std::size_t) {
+        result.steps += outcome.steps;
+        if (!outcome.ok) {
+          result.diverged = true;
+          return;
+        }
+        ++result.episodes;
+        sum += outcome.undiscounted;
+        sumSquares += outcome.undiscounted * outcome.undiscounted;
+      });
   if (result.episodes > 0) {
     const double n = static_cast<double>(result.episodes);
     result.meanReturn = sum / n;

@@ -19,7 +19,7 @@ struct LearnerParamSpec {
 // InputError (where = "--param <key>") for a value it cannot take.
 //   pg:  updates, episodes, max_episode_steps, max_total_steps, discount, baseline (optimal|none),
 //        rprop (large|small), delta_min, delta_ini, delta_max, std, learn_std, min_std, max_std,
-//        bias, normalise
+//        lockstep, bias, normalise
 //   lpi: iterations, games, lambda, ridge, step, max_moves, weights (v1,v2,...), bias, normalise
 bool applyPolicyGradientParam(PolicyGradientConfig& config, const std::string& key,
                               const std::string& value);

@@ -27,14 +27,19 @@ struct PolicyGradientConfig {
   RpropConfig rprop = RpropConfig::paperLarge();
   PolicyOptions policy;
   FeatureOptions features;
+  // Each episode draws its start state and actions from its own stream, seeded from the run's
+  // seed, the update and the episode. Lockstep (default): the episodes of an update run side by
+  // side through the batched environment (env/batch.hpp) where the environment has one;
+  // otherwise, or when false, one after another (the reference). Both give the same results.
+  bool lockstep = true;
   // Called with each row of the curve as soon as it is complete (progress output); may be empty.
   std::function<void(const CurvePoint&)> onPoint;
 };
 
-// Trains from zero weights. The map's inputDim() must equal env.stateDim() (InputError
-// otherwise). Row u of the curve is the batch played with the policy after u updates; the final
-// weights are those of the last row. A non-finite feature, action or return marks the curve
-// diverged and ends it; nothing throws for numerical trouble.
+// Trains from zero weights, drawing one value from `rng` (the run's seed). The map's inputDim()
+// must equal env.stateDim() (InputError otherwise). Row u of the curve is the batch played with the
+// policy after u updates; the final weights are those of the last row. A non-finite feature, action
+// or return marks the curve diverged and ends it; nothing throws for numerical trouble.
 LearningCurve trainPolicyGradient(env::Environment& env, const jit::FeatureMap& map,
                                   const PolicyGradientConfig& config, Rng& rng);
 
