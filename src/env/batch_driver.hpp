@@ -35,7 +35,8 @@ void stepGroup(const Kernel& kernel, double* state, const double* action, std::s
     const lanes::Mask4 done = kernel(s, a, r);
     for (std::size_t i = 0; i < S; ++i) lanes::store(state + i * stride, s[i]);
     lanes::store(reward, r);
-    for (int j = 0; j < 4; ++j) terminated[j] = lanes::lane(done, j) ? 1 : 0;
+    const unsigned bits = lanes::bitsOf(done);
+    for (int j = 0; j < 4; ++j) terminated[j] = (bits >> j) & 1u;
   }
 }
 
@@ -55,6 +56,11 @@ GPFD_AVX2_KERNEL void stepAvx2(const Kernel& kernel, const BatchBuffers& io) {
                                    io.terminated + l);
   }
   if (l == io.lanes) return;
+  if (io.scratchTail) {
+    stepGroup<S, A, lanes::Lanes4>(kernel, io.state + l, io.action + l, io.stride, io.reward + l,
+                                   io.terminated + l);
+    return;
+  }
   // The last 1-3 lanes, padded to a group with copies of the last one.
   const std::size_t rest = io.lanes - l;
   double state[S * 4], action[A > 0 ? A * 4 : 1], reward[4];

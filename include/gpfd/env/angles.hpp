@@ -28,11 +28,7 @@ inline lanes::Lanes4 wrapAngle(lanes::Lanes4 x) {
   const Lanes4 once = lanes::select(x > hi, x - period, lanes::select(x < lo, x + period, x));
   const lanes::Mask4 rest = once > hi || once < lo || !(lanes::abs(x) <= 64 * period);
   if (!lanes::anyOf(rest)) return once;
-  Lanes4 out = once;
-  for (int j = 0; j < 4; ++j) {
-    if (lanes::lane(rest, j)) out.v[j] = wrapAngle(x[j]);
-  }
-  return out;
+  return lanes::patchLanes(rest, x, once, [](double v) { return wrapAngle(v); });
 }
 
 }  // namespace gpfd::env

@@ -31,6 +31,10 @@ struct BatchBuffers {
   double* reward = nullptr;            // Out: `lanes` values.
   std::uint8_t* terminated = nullptr;  // Out: 1 for a terminal state of the task.
   std::uint8_t* truncated = nullptr;   // Out: 1 when the time limit is reached.
+  // True: the lanes from `lanes` up to the next multiple of 4 (within `stride` and every per-lane
+  // array) are scratch that the AVX2 path may overwrite with garbage, which spares it copying a
+  // last partial group of lanes. False (default): nothing beyond `lanes` is touched.
+  bool scratchTail = false;
 };
 
 // How lanes are computed: Auto takes AVX2 where cpuHasAvx2(), Scalar one lane at a time (the

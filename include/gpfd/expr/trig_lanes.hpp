@@ -68,12 +68,8 @@ inline SinCos<lanes::Lanes4> sinCos(lanes::Lanes4 x) {
   out.sin = lanes::select(tiny, x, out.sin);
   out.cos = lanes::select(tiny, Lanes4(1.0), out.cos);
   if (lanes::anyOf(large)) {
-    for (int j = 0; j < 4; ++j) {
-      if (lanes::lane(large, j)) {
-        out.sin.v[j] = sin(x[j]);
-        out.cos.v[j] = cos(x[j]);
-      }
-    }
+    out.sin = lanes::patchLanes(large, x, out.sin, [](double v) { return sin(v); });
+    out.cos = lanes::patchLanes(large, x, out.cos, [](double v) { return cos(v); });
   }
   return out;
 }

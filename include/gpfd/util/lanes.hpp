@@ -25,6 +25,15 @@ namespace gpfd::lanes {
 using RawLanes = double __attribute__((vector_size(32)));
 using RawMask = std::int64_t __attribute__((vector_size(32)));
 
+// The two types are laid out with AVX enabled: GCC fixes a struct's machine mode when it lays it
+// out, and a struct laid out for SSE2 only would be copied in 16-byte pieces inside AVX2 code
+// (store-forwarding stalls on every copy).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#pragma GCC push_options
+#pragma GCC target("avx2")
+#define GPFD_LANES_POP_OPTIONS
+#endif
+
 // Per lane all ones (true) or all zeros (false), as comparisons give it.
 struct Mask4 {
   RawMask bits;
@@ -37,9 +46,12 @@ struct Lanes4 {
   // Broadcast, implicit so that `0.5 * x` reads as it does for double.
   Lanes4(double x) : v{x, x, x, x} {}  // NOLINT(google-explicit-constructor)
   explicit Lanes4(RawLanes raw) : v(raw) {}
-
-  double operator[](int lane) const { return v[lane]; }
 };
+
+#ifdef GPFD_LANES_POP_OPTIONS
+#pragma GCC pop_options
+#undef GPFD_LANES_POP_OPTIONS
+#endif
 
 inline Lanes4 load(const double* p) {
   RawLanes v;
@@ -81,7 +93,24 @@ inline Lanes4 select(Mask4 mask, Lanes4 a, Lanes4 b) {
   return Lanes4((RawLanes)(((RawMask)a.v & mask.bits) | ((RawMask)b.v & ~mask.bits)));
 }
 inline bool anyOf(Mask4 m) { return (m.bits[0] | m.bits[1] | m.bits[2] | m.bits[3]) != 0; }
-inline bool lane(Mask4 m, int i) { return m.bits[i] != 0; }
+// Bit j set when lane j of the mask is true.
+inline unsigned bitsOf(Mask4 m) {
+  return (m.bits[0] != 0 ? 1u : 0u) | (m.bits[1] != 0 ? 2u : 0u) | (m.bits[2] != 0 ? 4u : 0u) |
+         (m.bits[3] != 0 ? 8u : 0u);
+}
+// `value` with f(x) in the lanes where `which` is true. For rare lanes: it goes through memory
+// (indexing a lane by a variable would keep the values in memory everywhere).
+template <class F>
+Lanes4 patchLanes(Mask4 which, Lanes4 x, Lanes4 value, F&& f) {
+  const unsigned lanes = bitsOf(which);
+  double in[4], out[4];
+  store(in, x);
+  store(out, value);
+  for (int j = 0; j < 4; ++j) {
+    if (lanes & (1u << j)) out[j] = f(in[j]);
+  }
+  return load(out);
+}
 inline Mask4 isNan(Lanes4 a) { return {a.v != a.v}; }
 // |a|: the sign bit cleared, as std::fabs does.
 inline Lanes4 abs(Lanes4 a) {
@@ -101,7 +130,7 @@ inline constexpr std::size_t kWidth = sizeof(T) / sizeof(double);
 // The same operations on one double, so that templates read the same for both types.
 inline double select(bool mask, double a, double b) { return mask ? a : b; }
 inline bool anyOf(bool m) { return m; }
-inline bool lane(bool m, int) { return m; }
+inline unsigned bitsOf(bool m) { return m ? 1u : 0u; }
 inline bool isNan(double a) { return a != a; }
 inline double abs(double a) { return std::fabs(a); }
 inline double clamp(double a, double lo, double hi) { return a < lo ? lo : (hi < a ? hi : a); }
