@@ -106,6 +106,44 @@ const PgTrial kSwimmer5{"swimmer",
                         "th1\nsin(th5)\ndth2\n",
                         {{"updates", "30"}, {"episodes", "10"}}};
 
+// The trials of one fitness evaluation (configs' `trials`: 5 on cart-pole and Acrobot, 4 on the
+// swimmers): reference = one trial after another, episodes one after another; fast = every
+// trial's episodes of an update side by side (trainPolicyGradientRuns).
+void pgFitness(benchmark::State& state, const PgTrial& trial, int trials) {
+  const auto environment = env::Registry::global().make(trial.env, trial.envParams);
+  const auto file = expr::parseFeaturesFile(trial.features, "bench", environment->stateNames(),
+                                            environment->name());
+  const jit::CompiledFeatureMap map(file.genome, environment->stateDim());
+  rl::PolicyGradientConfig config;
+  for (const auto& [k, v] : trial.learner) rl::applyPolicyGradientParam(config, k, v);
+  rl::PolicyGradientConfig reference = config, fast = config;
+  reference.lockstep = false;
+  fast.lockstep = true;
+  Path slow, quick;
+  std::uint64_t seed = 0;
+  for (auto _ : state) {
+    ++seed;
+    slow.time([&] {
+      std::int64_t steps = 0;
+      for (int t = 0; t < trials; ++t) {
+        Rng rng(deriveSeed(seed, t));
+        steps += rl::trainPolicyGradient(*environment, map, reference, rng).steps;
+      }
+      return steps;
+    });
+    quick.time([&] {
+      std::vector<Rng> rngs;
+      for (int t = 0; t < trials; ++t) rngs.emplace_back(deriveSeed(seed, t));
+      std::int64_t steps = 0;
+      for (const auto& curve : rl::trainPolicyGradientRuns(*environment, map, fast, rngs)) {
+        steps += curve.steps;
+      }
+      return steps;
+    });
+  }
+  report(state, slow, quick, "step");
+}
+
 void BM_PgTrialCartPole(benchmark::State& state) { pgTrial(state, kCartPole); }
 void BM_PgTrialAcrobot(benchmark::State& state) { pgTrial(state, kAcrobot); }
 void BM_PgTrialSwimmer3(benchmark::State& state) { pgTrial(state, kSwimmer3); }
@@ -114,6 +152,15 @@ BENCHMARK(BM_PgTrialCartPole)->Unit(benchmark::kMillisecond)->MinTime(3.0);
 BENCHMARK(BM_PgTrialAcrobot)->Unit(benchmark::kMillisecond)->MinTime(3.0);
 BENCHMARK(BM_PgTrialSwimmer3)->Unit(benchmark::kMillisecond)->MinTime(3.0);
 BENCHMARK(BM_PgTrialSwimmer5)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+
+void BM_PgFitnessCartPole(benchmark::State& state) { pgFitness(state, kCartPole, 5); }
+void BM_PgFitnessAcrobot(benchmark::State& state) { pgFitness(state, kAcrobot, 5); }
+void BM_PgFitnessSwimmer3(benchmark::State& state) { pgFitness(state, kSwimmer3, 4); }
+void BM_PgFitnessSwimmer5(benchmark::State& state) { pgFitness(state, kSwimmer5, 4); }
+BENCHMARK(BM_PgFitnessCartPole)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+BENCHMARK(BM_PgFitnessAcrobot)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+BENCHMARK(BM_PgFitnessSwimmer3)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+BENCHMARK(BM_PgFitnessSwimmer5)->Unit(benchmark::kMillisecond)->MinTime(3.0);
 
 // Lambda-PI on 12 x 8 with the paper's 18 state variables: 2 iterations of 10 games from the
 // Bertsekas-Ioffe start (short games, so that a run takes milliseconds). Unit: a decision (one

@@ -27,30 +27,42 @@ struct Outcome {
   bool ok = true;
 };
 
-// What a player reports for episodes [0, n) of one call.
+// What a player reports for the episodes of one call, in the order of its tasks.
 struct Records {
   std::vector<Outcome> outcomes;
   std::vector<Eigen::VectorXd> eligibility;  // Sum of d log pi / d params, when sampling.
   std::vector<FeatureMoments> moments;       // The raw features seen, when normalising.
 };
 
-// What every player shares: the run's learner objects, fixed for the player's life. The policy's
-// parameters and the pipeline's normalisation may change between calls.
+// One learning run's learner objects. Runs share the environment, the feature map, the feature
+// options and the policy's shape; their parameters and normalisation may change between calls.
+struct Run {
+  const FeaturePipeline* features = nullptr;
+  LinearPolicy* policy = nullptr;  // The sequential player samples through it.
+};
+
+// What every player shares, fixed for the player's life.
 struct Setup {
   env::Environment* env = nullptr;
   const jit::FeatureMap* map = nullptr;
-  const FeaturePipeline* features = nullptr;
-  LinearPolicy* policy = nullptr;  // The sequential player samples through it.
+  std::vector<Run> runs;
   int maxSteps = 0;
   double discount = 1.0;
+};
+
+// One episode to play: of which run, from which seed.
+struct Task {
+  std::size_t run = 0;
+  std::uint64_t seed = 0;
 };
 
 class Player {
  public:
   virtual ~Player() = default;
-  // Plays one episode per seed (at most capacity() seeds) with the policy as it is: sampled
-  // actions (with eligibilities) or greedy ones. `out` is resized as needed.
-  virtual void play(std::span<const std::uint64_t> seeds, bool sampling, Records& out) = 0;
+  // Plays one episode per task (at most capacity() tasks) with the runs' policies as they are:
+  // sampled actions (with eligibilities) or greedy ones. `out` is resized as needed. After an
+  // episode that is not ok, a player may skip the later tasks of the same run.
+  virtual void play(std::span<const Task> tasks, bool sampling, Records& out) = 0;
   virtual std::size_t capacity() const = 0;
 };
 
@@ -60,7 +72,7 @@ std::unique_ptr<Player> makeSequentialPlayer(const Setup& setup, std::size_t cap
 // Side by side; nullptr when the environment has no batched form.
 std::unique_ptr<Player> makeLockstepPlayer(const Setup& setup, std::size_t capacity);
 
-// Sizes `out` for n episodes of a policy with `parameters` parameters and `rawDim` raw features.
+// Sizes `out` for n episodes of policies with `parameters` parameters and `rawDim` raw features.
 void prepare(Records& out, std::size_t n, Eigen::Index parameters, std::size_t rawDim,
              bool sampling, bool normalising);
 

@@ -6,6 +6,8 @@
 // (lockstep_kernels.hpp), and the batched environment steps every lane. An episode that ends frees
 // its lane: the last running lane moves into it, so the running lanes stay dense. Every lane
 // performs the operations of the sequential player in the same order, so both give the same bits.
+// Lanes may belong to different learning runs (the trials of a fitness evaluation): each lane
+// carries its run's weights, standard deviations and normalisation.
 #include <algorithm>
 #include <cmath>
 
@@ -26,10 +28,11 @@ class LockstepPlayer final : public Player {
         capacity_(capacity),
         stride_((capacity + 3) / 4 * 4),
         stateDim_(batch_->stateDim()),
-        rawDim_(setup.features->rawDim()),
-        dim_(setup.features->dim()),
-        outputs_(setup.policy->outputs()),
-        parameters_(static_cast<std::size_t>(setup.policy->parameterCount())),
+        rawDim_(setup.runs.front().features->rawDim()),
+        dim_(setup.runs.front().features->dim()),
+        outputs_(setup.runs.front().policy->outputs()),
+        parameters_(static_cast<std::size_t>(setup.runs.front().policy->parameterCount())),
+        normalise_(setup.runs.front().features->options().normalise),
         state_(stateDim_ * stride_, 0.0),
         action_(batch_->actionComponents() * stride_, 0.0),
         reward_(stride_, 0.0),
@@ -45,9 +48,14 @@ class LockstepPlayer final : public Player {
         choiceCoefficient_(outputs_, 0.0),
         logits_(outputs_, 0.0),
         eligibility_(parameters_ * stride_, 0.0),
+        weights_(outputs_ * dim_ * stride_, 0.0),
+        sd_(outputs_ * stride_, 1.0),
+        shift_(normalise_ ? rawDim_ * stride_ : 0, 0.0),
+        scale_(normalise_ ? rawDim_ * stride_ : 0, 1.0),
         weight_(stride_, 1.0),
         failed_(stride_, 0),
         episode_(stride_, 0),
+        run_(stride_, 0),
         rngs_(stride_) {
     io_.stride = stride_;
     io_.state = state_.data();
@@ -63,25 +71,24 @@ class LockstepPlayer final : public Player {
 
   std::size_t capacity() const override { return capacity_; }
 
-  void play(std::span<const std::uint64_t> seeds, bool sampling, Records& out) override {
-    const std::size_t n = seeds.size();
-    const bool normalising = s_.features->options().normalise;
-    prepare(out, n, s_.policy->parameterCount(), rawDim_, sampling, normalising);
+  void play(std::span<const Task> tasks, bool sampling, Records& out) override {
+    const std::size_t n = tasks.size();
+    prepare(out, n, static_cast<Eigen::Index>(parameters_), rawDim_, sampling, normalise_);
     if (sampling) std::fill(eligibility_.begin(), eligibility_.end(), 0.0);
     for (std::size_t e = 0; e < n; ++e) {
-      Rng rng(seeds[e]);
+      Rng rng(tasks[e].seed);
       batch_->reset(rng, io_, e);
       rngs_.set(e, rng);
       episode_[e] = e;
       weight_[e] = 1.0;
+      takeRun(e, tasks[e].run);
     }
     std::size_t active = n;
     while (active > 0) {
       io_.lanes = active;
       lanes_.lanes = (active + 3) / 4 * 4;
-      features(active, normalising ? &out.moments : nullptr);
-      lockstep::linearOutputs(lanes_, s_.policy->parameters().data(), outputs_, dim_, phi_.data(),
-                              mu_.data());
+      features(active, normalise_ ? &out.moments : nullptr);
+      lockstep::linearOutputs(lanes_, weights_.data(), outputs_, dim_, phi_.data(), mu_.data());
       for (std::size_t l = 0; l < active; ++l) {
         for (std::size_t i = 0; i < outputs_ && !failed_[l]; ++i) {
           if (!std::isfinite(mu_[i * stride_ + l])) failed_[l] = 1;
@@ -111,10 +118,8 @@ class LockstepPlayer final : public Player {
       double* to = phi_.data() + j * stride_;
       for (std::size_t l = 0; l < lanes_.lanes; ++l) to[l] = raw_[l * rawDim_ + j];
     }
-    const bool normalise = s_.features->options().normalise;
-    lockstep::checkAndNormalise(lanes_, phi_.data(), rawDim_,
-                                normalise ? s_.features->shift().data() : nullptr,
-                                s_.features->scale().data(), failed_.data());
+    lockstep::checkAndNormalise(lanes_, phi_.data(), rawDim_, normalise_ ? shift_.data() : nullptr,
+                                scale_.data(), failed_.data());
     if (moments != nullptr) {
       for (std::size_t l = 0; l < active; ++l) {
         if (!failed_[l]) (*moments)[episode_[l]].add(raw_.data() + l * rawDim_);
@@ -124,15 +129,16 @@ class LockstepPlayer final : public Player {
 
   // LinearPolicy::sample, lane by lane.
   void sample(std::size_t active) {
-    const LinearPolicy& policy = *s_.policy;
+    const LinearPolicy& policy = *s_.runs.front().policy;  // For the shape and the action box.
     if (policy.continuous()) {
       const std::size_t weightCount = outputs_ * dim_;
       const bool learnStd = parameters_ > weightCount;
       for (std::size_t i = 0; i < outputs_; ++i) {
         rngs_.standardNormal(active, eps_.data(), lanes_.avx2);
         lockstep::gaussianActions(
-            lanes_, mu_.data() + i * stride_, eps_.data(), policy.stdOf(i), policy.centre(i),
-            policy.halfWidth(i), action_.data() + i * stride_, coefficient_.data(),
+            lanes_, mu_.data() + i * stride_, eps_.data(), sd_.data() + i * stride_,
+            policy.centre(i), policy.halfWidth(i), action_.data() + i * stride_,
+            coefficient_.data(),
             learnStd ? eligibility_.data() + (weightCount + i) * stride_ : nullptr);
         lockstep::addGradient(lanes_, eligibility_.data(), i * dim_, coefficient_.data(),
                               phi_.data(), dim_);
@@ -150,7 +156,8 @@ class LockstepPlayer final : public Player {
       }
       for (std::size_t k = 0; k < outputs_; ++k) logits_[k] = mu_[k * stride_ + l];
       Rng rng = rngs_.get(l);
-      const std::size_t choice = policy.drawChoice(logits_.data(), rng, choiceCoefficient_.data());
+      const std::size_t choice =
+          s_.runs[run_[l]].policy->drawChoice(logits_.data(), rng, choiceCoefficient_.data());
       rngs_.set(l, rng);
       action_[l] = static_cast<double>(choice);
       for (std::size_t k = 0; k < outputs_; ++k) {
@@ -164,7 +171,7 @@ class LockstepPlayer final : public Player {
 
   // LinearPolicy::greedy, lane by lane.
   void greedy(std::size_t active) {
-    const LinearPolicy& policy = *s_.policy;
+    const LinearPolicy& policy = *s_.runs.front().policy;  // For the shape and the action box.
     for (std::size_t l = 0; l < active; ++l) {
       if (policy.continuous()) {
         for (std::size_t i = 0; i < outputs_; ++i) {
@@ -231,12 +238,41 @@ class LockstepPlayer final : public Player {
     elapsed_[to] = elapsed_[from];
     weight_[to] = weight_[from];
     episode_[to] = episode_[from];
+    run_[to] = run_[from];
     rngs_.move(from, to);
+    for (std::size_t k = 0; k < outputs_ * dim_; ++k) {
+      weights_[k * stride_ + to] = weights_[k * stride_ + from];
+    }
+    for (std::size_t i = 0; i < outputs_; ++i) sd_[i * stride_ + to] = sd_[i * stride_ + from];
+    for (std::size_t j = 0; j < shift_.size() / stride_; ++j) {
+      shift_[j * stride_ + to] = shift_[j * stride_ + from];
+      scale_[j * stride_ + to] = scale_[j * stride_ + from];
+    }
+  }
+
+  // Lane `lane` plays an episode of run `run`: it takes the run's weights, standard deviations
+  // and normalisation.
+  void takeRun(std::size_t lane, std::size_t run) {
+    run_[lane] = run;
+    const LinearPolicy& policy = *s_.runs[run].policy;
+    const double* w = policy.parameters().data();
+    for (std::size_t k = 0; k < outputs_ * dim_; ++k) weights_[k * stride_ + lane] = w[k];
+    if (policy.continuous()) {
+      for (std::size_t i = 0; i < outputs_; ++i) sd_[i * stride_ + lane] = policy.stdOf(i);
+    }
+    if (normalise_) {
+      const FeaturePipeline& features = *s_.runs[run].features;
+      for (std::size_t j = 0; j < rawDim_; ++j) {
+        shift_[j * stride_ + lane] = features.shift()[j];
+        scale_[j * stride_ + lane] = features.scale()[j];
+      }
+    }
   }
 
   Setup s_;
   std::unique_ptr<env::BatchEnvironment> batch_;
   std::size_t capacity_, stride_, stateDim_, rawDim_, dim_, outputs_, parameters_;
+  bool normalise_;
   lockstep::Rows lanes_;  // The lane rows as the kernels see them.
   // Lanes: structure of arrays, `stride_` apart.
   std::vector<double> state_, action_, reward_;
@@ -245,9 +281,11 @@ class LockstepPlayer final : public Player {
   env::BatchBuffers io_;
   std::vector<double> rows_, raw_;  // States and raw features, one row per lane (the map's layout).
   std::vector<double> phi_, mu_, eps_, coefficient_, choiceCoefficient_, logits_, eligibility_;
-  std::vector<double> weight_;
+  std::vector<double> weights_, sd_, shift_, scale_;  // Each lane's run's parameters.
+  std::vector<double> weight_;                        // Discount weight of the next reward.
   std::vector<std::uint8_t> failed_;
-  std::vector<std::size_t> episode_;  // The episode (index into the call's seeds) of each lane.
+  std::vector<std::size_t> episode_;  // The episode (index into the call's tasks) of each lane.
+  std::vector<std::size_t> run_;      // Its run.
   RngLanes rngs_;                     // Each lane's episode's stream.
 };
 

@@ -22,7 +22,8 @@ void checkAndNormaliseT(const Rows& rows, double* phi, std::size_t dim, const do
     if (shift == nullptr) continue;
     for (std::size_t j = 0; j < dim; ++j) {
       double* p = phi + j * rows.stride + l;
-      store(p, (loadAs<T>(p) - shift[j]) / scale[j]);
+      store(p, (loadAs<T>(p) - loadAs<T>(shift + j * rows.stride + l)) /
+                   loadAs<T>(scale + j * rows.stride + l));
     }
   }
 }
@@ -33,22 +34,24 @@ void linearOutputsT(const Rows& rows, const double* w, std::size_t outputs, std:
   for (std::size_t l = 0; l < rows.lanes; l += lanes::kWidth<T>) {
     for (std::size_t i = 0; i < outputs; ++i) {
       T acc = 0.0;
-      for (std::size_t j = 0; j < dim; ++j)
-        acc += w[i * dim + j] * loadAs<T>(phi + j * rows.stride + l);
+      for (std::size_t j = 0; j < dim; ++j) {
+        acc +=
+            loadAs<T>(w + (i * dim + j) * rows.stride + l) * loadAs<T>(phi + j * rows.stride + l);
+      }
       store(mu + i * rows.stride + l, acc);
     }
   }
 }
 
 template <class T>
-void gaussianActionsT(const Rows& rows, const double* mu, const double* eps, double sd,
+void gaussianActionsT(const Rows& rows, const double* mu, const double* eps, const double* sd,
                       double centre, double half, double* action, double* coefficient,
                       double* stdGradient) {
   for (std::size_t l = 0; l < rows.lanes; l += lanes::kWidth<T>) {
-    const T e = loadAs<T>(eps + l);
-    const T u = loadAs<T>(mu + l) + sd * e;
+    const T e = loadAs<T>(eps + l), deviation = loadAs<T>(sd + l);
+    const T u = loadAs<T>(mu + l) + deviation * e;
     store(action + l, centre + half * u);
-    store(coefficient + l, e / sd);
+    store(coefficient + l, e / deviation);
     if (stdGradient != nullptr) store(stdGradient + l, loadAs<T>(stdGradient + l) + (e * e - 1.0));
   }
 }
@@ -75,8 +78,9 @@ GPFD_AVX2_KERNEL void linearOutputsAvx2(const Rows& rows, const double* w, std::
   linearOutputsT<lanes::Lanes4>(rows, w, outputs, dim, phi, mu);
 }
 GPFD_AVX2_KERNEL void gaussianActionsAvx2(const Rows& rows, const double* mu, const double* eps,
-                                          double sd, double centre, double half, double* action,
-                                          double* coefficient, double* stdGradient) {
+                                          const double* sd, double centre, double half,
+                                          double* action, double* coefficient,
+                                          double* stdGradient) {
   gaussianActionsT<lanes::Lanes4>(rows, mu, eps, sd, centre, half, action, coefficient,
                                   stdGradient);
 }
@@ -100,7 +104,7 @@ void linearOutputs(const Rows& rows, const double* w, std::size_t outputs, std::
   linearOutputsT<double>(rows, w, outputs, dim, phi, mu);
 }
 
-void gaussianActions(const Rows& rows, const double* mu, const double* eps, double sd,
+void gaussianActions(const Rows& rows, const double* mu, const double* eps, const double* sd,
                      double centre, double half, double* action, double* coefficient,
                      double* stdGradient) {
   if (rows.avx2) {

@@ -24,40 +24,62 @@ void checkDimensions(const env::Environment& env, const jit::FeatureMap& map) {
   }
 }
 
-// The learner's objects for one run, and the player that plays its episodes.
-struct Learner {
-  Learner(env::Environment& env, const jit::FeatureMap& map, const PolicyGradientConfig& config,
-          int maxSteps, double discount, std::size_t episodesPerCall)
-      : features(map, config.features), policy(env.actionSpace(), features.dim(), config.policy) {
-    const episodes::Setup setup{&env, &map, &features, &policy, maxSteps, discount};
+// The learner's objects for one run.
+struct RunState {
+  RunState(env::Environment& env, const jit::FeatureMap& map, const PolicyGradientConfig& config)
+      : features(map, config.features),
+        policy(env.actionSpace(), features.dim(), config.policy),
+        rprop(config.rprop, policy.parameterCount()),
+        estimator(policy.parameterCount(), config.optimalBaseline),
+        gradient(policy.parameterCount()) {}
+
+  FeaturePipeline features;
+  LinearPolicy policy;
+  Rprop rprop;
+  EpisodicGradientEstimator estimator;
+  Eigen::VectorXd gradient;
+  LearningCurve curve;
+  std::uint64_t seed = 0;
+  bool learning = true;  // Still playing updates.
+  bool failed = false;   // An episode of the current batch was not ok.
+  double sum = 0.0;      // Of the current batch's returns.
+};
+
+// Runs, the player of their episodes, and the task list: the episodes to play, in run order and
+// episode order within a run.
+struct Learners {
+  Learners(env::Environment& env, const jit::FeatureMap& map, const PolicyGradientConfig& config,
+           std::size_t count, int maxSteps, double discount, std::size_t episodesPerCall) {
+    episodes::Setup setup{&env, &map, {}, maxSteps, discount};
+    for (std::size_t k = 0; k < count; ++k) {
+      runs.push_back(std::make_unique<RunState>(env, map, config));
+      setup.runs.push_back({&runs.back()->features, &runs.back()->policy});
+    }
     const std::size_t lanes = std::clamp<std::size_t>(episodesPerCall, 1, kMaxLanes);
     if (config.lockstep) player = episodes::makeLockstepPlayer(setup, lanes);
     if (!player) player = episodes::makeSequentialPlayer(setup, lanes);
   }
 
-  // Plays `count` episodes, episode e seeded by seedOf(e), in chunks of the player's capacity;
-  // calls use(e, outcome, records, index in records) in episode order, up to and including the
-  // first episode that is not ok.
-  template <class Seed, class Use>
-  void play(int count, bool sampling, Seed&& seedOf, Use&& use) {
-    for (int first = 0; first < count;) {
-      const int n = std::min<int>(count - first, static_cast<int>(player->capacity()));
-      seeds.resize(static_cast<std::size_t>(n));
-      for (int e = 0; e < n; ++e) seeds[static_cast<std::size_t>(e)] = seedOf(first + e);
-      player->play(seeds, sampling, records);
-      for (int e = 0; e < n; ++e) {
-        const episodes::Outcome& outcome = records.outcomes[static_cast<std::size_t>(e)];
-        use(first + e, outcome, static_cast<std::size_t>(e));
-        if (!outcome.ok) return;
+  // Plays `tasks` in chunks of the player's capacity; calls use(task, outcome, index in records)
+  // in task order, skipping the tasks of a run after its first episode that is not ok.
+  template <class Use>
+  void play(bool sampling, Use&& use) {
+    std::vector<std::uint8_t> failed(runs.size(), 0);
+    for (std::size_t first = 0; first < tasks.size(); first += player->capacity()) {
+      const std::size_t n = std::min(tasks.size() - first, player->capacity());
+      const std::span<const episodes::Task> chunk(tasks.data() + first, n);
+      player->play(chunk, sampling, records);
+      for (std::size_t i = 0; i < n; ++i) {
+        if (failed[chunk[i].run]) continue;
+        use(chunk[i], records.outcomes[i], i);
+        if (!records.outcomes[i].ok) failed[chunk[i].run] = 1;
       }
-      first += n;
     }
   }
 
-  FeaturePipeline features;
-  LinearPolicy policy;
+  std::vector<std::unique_ptr<RunState>> runs;
   std::unique_ptr<episodes::Player> player;
-  std::vector<std::uint64_t> seeds;
+  std::vector<episodes::Task> tasks;
   episodes::Records records;
 };
 
@@ -70,69 +92,101 @@ void exportWeights(const LinearPolicy& policy, const FeaturePipeline& features,
   features.exportTo(out);
 }
 
+// After a batch: the run's row of the curve, then its update (or its end).
+void finishBatch(RunState& run, int update, const PolicyGradientConfig& config) {
+  LearningCurve& curve = run.curve;
+  if (curve.diverged) {
+    run.learning = false;
+    return;
+  }
+  curve.points.push_back({update, curve.episodes, curve.steps,
+                          run.sum / static_cast<double>(config.episodesPerUpdate)});
+  exportWeights(run.policy, run.features, curve.weights);
+  if (config.onPoint) config.onPoint(curve.points.back());
+  if (update == config.updates ||
+      (config.maxTotalSteps > 0 && curve.steps >= config.maxTotalSteps)) {
+    run.learning = false;
+    return;
+  }
+  run.estimator.gradient(run.gradient);
+  if (!run.gradient.allFinite()) {
+    curve.diverged = true;
+    curve.divergedReason = "non-finite gradient estimate";
+    run.learning = false;
+    return;
+  }
+  run.rprop.step(run.gradient, run.policy.parameters());
+  run.policy.clampParameters();
+  run.features.refresh(run.policy.parameters().data(), run.policy.outputs());
+  if (!run.policy.parameters().allFinite()) {
+    curve.diverged = true;
+    curve.divergedReason = "non-finite policy weights";
+    run.learning = false;
+  }
+}
+
 }  // namespace
 
-LearningCurve trainPolicyGradient(env::Environment& env, const jit::FeatureMap& map,
-                                  const PolicyGradientConfig& config, Rng& rng) {
+std::vector<LearningCurve> trainPolicyGradientRuns(env::Environment& env,
+                                                   const jit::FeatureMap& map,
+                                                   const PolicyGradientConfig& config,
+                                                   std::span<Rng> rngs) {
   checkDimensions(env, map);
   if (config.updates < 0 || config.episodesPerUpdate < 1 || config.maxEpisodeSteps < 1) {
     throw InputError("updates >= 0, episodes per update >= 1, max episode steps >= 1 required",
                      "policy gradient");
   }
   const auto start = std::chrono::steady_clock::now();
-  const std::uint64_t runSeed = rng();
-  Learner learner(env, map, config, config.maxEpisodeSteps, config.discount,
-                  static_cast<std::size_t>(config.episodesPerUpdate));
-  LinearPolicy& policy = learner.policy;
-  FeaturePipeline& features = learner.features;
-  Rprop rprop(config.rprop, policy.parameterCount());
-  EpisodicGradientEstimator estimator(policy.parameterCount(), config.optimalBaseline);
-  Eigen::VectorXd gradient(policy.parameterCount());
-
-  LearningCurve curve;
-  curve.points.reserve(static_cast<std::size_t>(config.updates) + 1);
+  const auto episodesPerUpdate = static_cast<std::size_t>(config.episodesPerUpdate);
+  Learners learners(env, map, config, rngs.size(), config.maxEpisodeSteps, config.discount,
+                    rngs.size() * episodesPerUpdate);
+  for (std::size_t k = 0; k < rngs.size(); ++k) {
+    learners.runs[k]->seed = rngs[k]();
+    learners.runs[k]->curve.points.reserve(static_cast<std::size_t>(config.updates) + 1);
+  }
   for (int update = 0; update <= config.updates; ++update) {
-    estimator.clear();
-    double sum = 0.0;
-    learner.play(
-        config.episodesPerUpdate, true, [&](int e) { return deriveSeed(runSeed, update, e); },
-        [&](int, const episodes::Outcome& outcome, std::size_t i) {
-          curve.steps += outcome.steps;
-          ++curve.episodes;
+    learners.tasks.clear();
+    for (std::size_t k = 0; k < learners.runs.size(); ++k) {
+      RunState& run = *learners.runs[k];
+      if (!run.learning) continue;
+      run.estimator.clear();
+      run.sum = 0.0;
+      for (int e = 0; e < config.episodesPerUpdate; ++e) {
+        learners.tasks.push_back({k, deriveSeed(run.seed, update, e)});
+      }
+    }
+    if (learners.tasks.empty()) break;
+    learners.play(
+        true, [&](const episodes::Task& task, const episodes::Outcome& outcome, std::size_t i) {
+          RunState& run = *learners.runs[task.run];
+          run.curve.steps += outcome.steps;
+          ++run.curve.episodes;
           if (!outcome.ok) {
-            curve.diverged = true;
-            curve.divergedReason = "non-finite feature, action, return or likelihood gradient";
+            run.curve.diverged = true;
+            run.curve.divergedReason = "non-finite feature, action, return or likelihood gradient";
             return;
           }
-          sum += outcome.undiscounted;
-          estimator.addEpisode(learner.records.eligibility[i], outcome.discounted);
-          if (config.features.normalise) features.merge(learner.records.moments[i]);
+          run.sum += outcome.undiscounted;
+          run.estimator.addEpisode(learners.records.eligibility[i], outcome.discounted);
+          if (config.features.normalise) run.features.merge(learners.records.moments[i]);
         });
-    if (curve.diverged) break;
-    curve.points.push_back(
-        {update, curve.episodes, curve.steps, sum / static_cast<double>(config.episodesPerUpdate)});
-    exportWeights(policy, features, curve.weights);
-    if (config.onPoint) config.onPoint(curve.points.back());
-    if (update == config.updates) break;
-    if (config.maxTotalSteps > 0 && curve.steps >= config.maxTotalSteps) break;
-    estimator.gradient(gradient);
-    if (!gradient.allFinite()) {
-      curve.diverged = true;
-      curve.divergedReason = "non-finite gradient estimate";
-      break;
-    }
-    rprop.step(gradient, policy.parameters());
-    policy.clampParameters();
-    features.refresh(policy.parameters().data(), policy.outputs());
-    if (!policy.parameters().allFinite()) {
-      curve.diverged = true;
-      curve.divergedReason = "non-finite policy weights";
-      break;
+    for (auto& run : learners.runs) {
+      if (run->learning) finishBatch(*run, update, config);
     }
   }
-  curve.wallSeconds =
+  const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return curve;
+  std::vector<LearningCurve> curves;
+  for (auto& run : learners.runs) {
+    run->curve.wallSeconds = seconds / static_cast<double>(learners.runs.size());
+    curves.push_back(std::move(run->curve));
+  }
+  return curves;
+}
+
+LearningCurve trainPolicyGradient(env::Environment& env, const jit::FeatureMap& map,
+                                  const PolicyGradientConfig& config, Rng& rng) {
+  return std::move(trainPolicyGradientRuns(env, map, config, std::span<Rng>(&rng, 1)).front());
 }
 
 Eigen::VectorXd estimatePolicyGradient(env::Environment& env, const jit::FeatureMap& map,
@@ -140,23 +194,22 @@ Eigen::VectorXd estimatePolicyGradient(env::Environment& env, const jit::Feature
                                        const Eigen::VectorXd& parameters, int episodes, Rng& rng) {
   checkDimensions(env, map);
   const std::uint64_t base = rng();
-  Learner learner(env, map, config, config.maxEpisodeSteps, config.discount,
-                  static_cast<std::size_t>(std::max(episodes, 1)));
-  if (parameters.size() != learner.policy.parameterCount()) {
+  Learners learners(env, map, config, 1, config.maxEpisodeSteps, config.discount,
+                    static_cast<std::size_t>(std::max(episodes, 1)));
+  RunState& run = *learners.runs.front();
+  if (parameters.size() != run.policy.parameterCount()) {
     throw InputError("wrong number of policy parameters", "policy gradient");
   }
-  learner.policy.parameters() = parameters;
-  EpisodicGradientEstimator estimator(learner.policy.parameterCount(), config.optimalBaseline);
+  run.policy.parameters() = parameters;
+  for (int e = 0; e < episodes; ++e) learners.tasks.push_back({0, deriveSeed(base, e)});
   bool ok = true;
-  learner.play(
-      episodes, true, [&](int e) { return deriveSeed(base, e); },
-      [&](int, const episodes::Outcome& outcome, std::size_t i) {
-        ok = ok && outcome.ok;
-        if (ok) estimator.addEpisode(learner.records.eligibility[i], outcome.discounted);
-      });
+  learners.play(true, [&](const episodes::Task&, const episodes::Outcome& outcome, std::size_t i) {
+    ok = ok && outcome.ok;
+    if (ok) run.estimator.addEpisode(learners.records.eligibility[i], outcome.discounted);
+  });
   if (!ok) return {};
   Eigen::VectorXd gradient;
-  estimator.gradient(gradient);
+  run.estimator.gradient(gradient);
   return gradient;
 }
 
@@ -165,32 +218,31 @@ EvaluationResult evaluatePolicy(env::Environment& env, const jit::FeatureMap& ma
                                 int episodes, bool greedy, Rng& rng) {
   checkDimensions(env, map);
   const std::uint64_t base = rng();
-  Learner learner(env, map, config, config.maxEpisodeSteps, 1.0,
-                  static_cast<std::size_t>(std::max(episodes, 1)));
-  LinearPolicy& policy = learner.policy;
-  if (weights.values.size() != static_cast<std::size_t>(policy.parameterCount())) {
+  Learners learners(env, map, config, 1, config.maxEpisodeSteps, 1.0,
+                    static_cast<std::size_t>(std::max(episodes, 1)));
+  RunState& run = *learners.runs.front();
+  if (weights.values.size() != static_cast<std::size_t>(run.policy.parameterCount())) {
     throw InputError("the weights have " + std::to_string(weights.values.size()) +
-                         " values, the policy needs " + std::to_string(policy.parameterCount()),
+                         " values, the policy needs " + std::to_string(run.policy.parameterCount()),
                      "weights");
   }
   for (std::size_t i = 0; i < weights.values.size(); ++i) {
-    policy.parameters()[static_cast<Eigen::Index>(i)] = weights.values[i];
+    run.policy.parameters()[static_cast<Eigen::Index>(i)] = weights.values[i];
   }
-  learner.features.importFrom(weights);
+  run.features.importFrom(weights);
+  for (int e = 0; e < episodes; ++e) learners.tasks.push_back({0, deriveSeed(base, e)});
   EvaluationResult result;
   double sum = 0.0, sumSquares = 0.0;
-  learner.play(
-      episodes, !greedy, [&](int e) { return deriveSeed(base, e); },
-      [&](int, const episodes::Outcome& outcome, std::size_t) {
-        result.steps += outcome.steps;
-        if (!outcome.ok) {
-          result.diverged = true;
-          return;
-        }
-        ++result.episodes;
-        sum += outcome.undiscounted;
-        sumSquares += outcome.undiscounted * outcome.undiscounted;
-      });
+  learners.play(!greedy, [&](const episodes::Task&, const episodes::Outcome& outcome, std::size_t) {
+    result.steps += outcome.steps;
+    if (!outcome.ok) {
+      result.diverged = true;
+      return;
+    }
+    ++result.episodes;
+    sum += outcome.undiscounted;
+    sumSquares += outcome.undiscounted * outcome.undiscounted;
+  });
   if (result.episodes > 0) {
     const double n = static_cast<double>(result.episodes);
     result.meanReturn = sum / n;

@@ -1,4 +1,5 @@
 // rl: the sequential reference player (episode_players.hpp).
+#include <algorithm>
 #include <cmath>
 
 #include "episode_players.hpp"
@@ -28,34 +29,38 @@ class SequentialPlayer final : public Player {
   SequentialPlayer(const Setup& setup, std::size_t capacity)
       : s_(setup),
         capacity_(capacity),
-        phi_(setup.features->dim(), 0.0),
-        action_(setup.policy->actionComponents(), 0.0) {}
+        phi_(setup.runs.front().features->dim(), 0.0),
+        action_(setup.runs.front().policy->actionComponents(), 0.0),
+        failed_(setup.runs.size(), 0) {}
 
   std::size_t capacity() const override { return capacity_; }
 
-  void play(std::span<const std::uint64_t> seeds, bool sampling, Records& out) override {
-    const bool normalising = s_.features->options().normalise;
-    prepare(out, seeds.size(), s_.policy->parameterCount(), s_.features->rawDim(), sampling,
+  void play(std::span<const Task> tasks, bool sampling, Records& out) override {
+    const Run& first = s_.runs.front();
+    const bool normalising = first.features->options().normalise;
+    prepare(out, tasks.size(), first.policy->parameterCount(), first.features->rawDim(), sampling,
             normalising);
-    for (std::size_t e = 0; e < seeds.size(); ++e) {
-      Rng rng(seeds[e]);
+    std::fill(failed_.begin(), failed_.end(), 0);
+    for (std::size_t e = 0; e < tasks.size(); ++e) {
+      if (failed_[tasks[e].run]) continue;
+      Rng rng(tasks[e].seed);
       Outcome& outcome = out.outcomes[e];
-      runEpisode(rng, sampling ? &out.eligibility[e] : nullptr,
+      runEpisode(s_.runs[tasks[e].run], rng, sampling ? &out.eligibility[e] : nullptr,
                  normalising ? &out.moments[e] : nullptr, outcome);
       if (sampling && outcome.ok) {
         outcome.ok = std::isfinite(outcome.discounted) && std::isfinite(out.eligibility[e].sum());
       }
-      if (!outcome.ok) break;
+      if (!outcome.ok) failed_[tasks[e].run] = 1;
     }
   }
 
  private:
-  void runEpisode(Rng& rng, Eigen::VectorXd* eligibility, FeatureMoments* moments,
+  void runEpisode(const Run& run, Rng& rng, Eigen::VectorXd* eligibility, FeatureMoments* moments,
                   Outcome& outcome) {
     env::Environment& env = *s_.env;
     env.reset(rng);
     const std::span<const double> action(action_.data(), action_.size());
-    const std::size_t raw = s_.features->rawDim();
+    const std::size_t raw = run.features->rawDim();
     double weight = 1.0;
     for (int t = 0; t < s_.maxSteps; ++t) {
       s_.map->evaluate(env.state().data(), phi_.data());
@@ -69,10 +74,10 @@ class SequentialPlayer final : public Player {
         moments->add(phi_.data());
       }
       const bool fine =
-          s_.features->transform(phi_.data()) &&
+          run.features->transform(phi_.data()) &&
           (eligibility != nullptr
-               ? s_.policy->sample(rng, phi_.data(), action_.data(), eligibility->data())
-               : s_.policy->greedy(phi_.data(), action_.data()));
+               ? run.policy->sample(rng, phi_.data(), action_.data(), eligibility->data())
+               : run.policy->greedy(phi_.data(), action_.data()));
       if (!fine) {
         outcome.ok = false;
         return;
@@ -93,6 +98,7 @@ class SequentialPlayer final : public Player {
   Setup s_;
   std::size_t capacity_;
   std::vector<double> phi_, action_;
+  std::vector<std::uint8_t> failed_;  // Per run: an episode of this call was not ok.
 };
 
 }  // namespace

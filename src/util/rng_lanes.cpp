@@ -1,7 +1,5 @@
 #include "gpfd/util/rng_lanes.hpp"
 
-#include <cstring>
-
 #include "gpfd/util/lanes.hpp"
 #include "gpfd/util/ziggurat.hpp"
 
@@ -10,6 +8,9 @@ namespace {
 
 using Words = std::uint64_t __attribute__((vector_size(32)));
 using Doubles = double __attribute__((vector_size(32)));
+// The same at any 8-byte aligned address (one unaligned 32-byte load or store).
+using UnalignedWords = std::uint64_t __attribute__((vector_size(32), aligned(8), may_alias));
+using UnalignedDoubles = double __attribute__((vector_size(32), aligned(8), may_alias));
 
 inline Words rotl(Words x, int k) { return (x << k) | (x >> (64 - k)); }
 
@@ -26,19 +27,24 @@ inline Doubles exactDouble(Words x) {
 GPFD_AVX2_KERNEL void normalGroups(std::uint64_t* words, std::size_t stride, std::size_t groups,
                                    double* out) {
   for (std::size_t g = 0; g < groups; ++g) {
-    Words s[4];
-    for (int w = 0; w < 4; ++w) std::memcpy(&s[w], words + w * stride + 4 * g, sizeof(Words));
-    const Words times5 = (s[1] << 2) + s[1];
+    const auto at = [&](std::size_t w) {
+      return reinterpret_cast<UnalignedWords*>(words + w * stride + 4 * g);
+    };
+    Words s0 = *at(0), s1 = *at(1), s2 = *at(2), s3 = *at(3);
+    const Words times5 = (s1 << 2) + s1;
     const Words rotated = rotl(times5, 7);
     const Words word = (rotated << 3) + rotated;
-    const Words t = s[1] << 17;
-    s[2] ^= s[0];
-    s[3] ^= s[1];
-    s[1] ^= s[2];
-    s[0] ^= s[3];
-    s[2] ^= t;
-    s[3] = rotl(s[3], 45);
-    for (int w = 0; w < 4; ++w) std::memcpy(words + w * stride + 4 * g, &s[w], sizeof(Words));
+    const Words t = s1 << 17;
+    s2 ^= s0;
+    s3 ^= s1;
+    s1 ^= s2;
+    s0 ^= s3;
+    s2 ^= t;
+    s3 = rotl(s3, 45);
+    *at(0) = s0;
+    *at(1) = s1;
+    *at(2) = s2;
+    *at(3) = s3;
 
     const Words mantissa = word >> 11;  // 53 bits, converted exactly in two parts.
     const Doubles uniform =
@@ -66,7 +72,7 @@ GPFD_AVX2_KERNEL void normalGroups(std::uint64_t* words, std::size_t stride, std
         for (int w = 0; w < 4; ++w) words[w * stride + lane] = state.words[w];
       }
     }
-    std::memcpy(out + 4 * g, &value, sizeof(Doubles));
+    *reinterpret_cast<UnalignedDoubles*>(out + 4 * g) = value;
   }
 }
 

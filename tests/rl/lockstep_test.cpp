@@ -157,6 +157,38 @@ TEST(Lockstep, EvaluationsAndGradientEstimatesEqualTheSequentialReference) {
   }
 }
 
+// Several runs together (the trials of a fitness evaluation) give each run's own curve: the same
+// as training it alone, sequentially, whatever the other runs do (some diverge or stop early).
+TEST(Lockstep, RunsTogetherEqualRunsAlone) {
+  for (const Setting& s : settings()) {
+    SCOPED_TRACE(s.name);
+    const auto environment = env::Registry::global().make(s.env, s.envParams);
+    const auto map = featureMap(s, *environment);
+    for (const bool lockstep : {true, false}) {
+      PolicyGradientConfig c = config(s, lockstep);
+      c.maxTotalSteps = 600;  // Runs stop after different updates.
+      std::vector<Rng> together;
+      for (std::uint64_t k = 0; k < 7; ++k) together.emplace_back(100 + k);
+      const std::vector<LearningCurve> curves =
+          trainPolicyGradientRuns(*environment, *map, c, together);
+      ASSERT_EQ(curves.size(), 7u);
+      std::size_t lengths = 0;
+      for (std::uint64_t k = 0; k < 7; ++k) {
+        Rng alone(100 + k);
+        const LearningCurve reference =
+            trainPolicyGradient(*environment, *map, config(s, false), alone);
+        PolicyGradientConfig capped = config(s, false);
+        capped.maxTotalSteps = 600;
+        Rng again(100 + k);
+        expectSameCurves(curves[k], trainPolicyGradient(*environment, *map, capped, again));
+        EXPECT_EQ(together[k](), again());
+        lengths += curves[k].points.size() != reference.points.size();
+      }
+      EXPECT_GT(lengths, 0u) << "the step cap never stopped a run early";
+    }
+  }
+}
+
 // A map whose features turn to NaN once the pole leans far: some episodes of an update fail in
 // the middle while others go on; both ways count the same steps and stop at the same episode.
 class FragileFeatures final : public jit::FeatureMap {
@@ -181,6 +213,16 @@ TEST(Lockstep, ADivergingRunStopsAtTheSameEpisodeAndStep) {
   const LearningCurve sequential = trainPolicyGradient(*environment, map, c, b);
   EXPECT_TRUE(sequential.diverged);
   expectSameCurves(lockstep, sequential);
+  // Together with other runs, each stopping where it diverges.
+  std::vector<Rng> rngs{Rng(3), Rng(4), Rng(5)};
+  c.lockstep = true;
+  const std::vector<LearningCurve> runs = trainPolicyGradientRuns(*environment, map, c, rngs);
+  expectSameCurves(runs[0], sequential);
+  for (std::uint64_t k = 1; k < 3; ++k) {
+    Rng alone(3 + k);
+    c.lockstep = false;
+    expectSameCurves(runs[k], trainPolicyGradient(*environment, map, c, alone));
+  }
 }
 
 // GP fitness goes through the same learner: equal trial fitness both ways.

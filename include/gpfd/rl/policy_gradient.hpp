@@ -4,6 +4,8 @@
 
 #include <cstdint>
 #include <functional>
+#include <span>
+#include <vector>
 
 #include "gpfd/env/environment.hpp"
 #include "gpfd/jit/feature_map.hpp"
@@ -42,6 +44,16 @@ struct PolicyGradientConfig {
 // or return marks the curve diverged and ends it; nothing throws for numerical trouble.
 LearningCurve trainPolicyGradient(env::Environment& env, const jit::FeatureMap& map,
                                   const PolicyGradientConfig& config, Rng& rng);
+
+// Several independent runs, one per engine: run k gives exactly trainPolicyGradient(env, map,
+// config, rngs[k]). With config.lockstep the episodes of each update of every run still learning
+// are played side by side (runs x episodesPerUpdate lanes), which fills the lanes better than one
+// run alone: the K trials of a fitness evaluation. config.onPoint sees every run's rows, update by
+// update; a curve's wallSeconds is its share of the whole time.
+std::vector<LearningCurve> trainPolicyGradientRuns(env::Environment& env,
+                                                   const jit::FeatureMap& map,
+                                                   const PolicyGradientConfig& config,
+                                                   std::span<Rng> rngs);
 
 // The gradient estimate (the one an update would use) at the given policy parameters, from
 // `episodes` sampled episodes: for tests and diagnostics. Empty when a run diverged.
