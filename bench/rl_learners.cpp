@@ -11,6 +11,7 @@
 #include <benchmark/benchmark.h>
 
 #include <ctime>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -61,27 +62,39 @@ struct PgTrial {
   std::vector<std::pair<std::string, std::string>> learner;
 };
 
+// A trial's environment, compiled features, and the learner settings of both paths.
+struct PgSetup {
+  explicit PgSetup(const PgTrial& trial)
+      : environment(env::Registry::global().make(trial.env, trial.envParams)),
+        map(expr::parseFeaturesFile(trial.features, "bench", environment->stateNames(),
+                                    environment->name())
+                .genome,
+            environment->stateDim()) {
+    for (const auto& [k, v] : trial.learner) rl::applyPolicyGradientParam(reference, k, v);
+    fast = reference;
+    reference.lockstep = false;
+    fast.lockstep = true;
+  }
+
+  std::unique_ptr<env::Environment> environment;
+  jit::CompiledFeatureMap map;
+  rl::PolicyGradientConfig reference, fast;
+};
+
 void pgTrial(benchmark::State& state, const PgTrial& trial) {
-  const auto environment = env::Registry::global().make(trial.env, trial.envParams);
-  const auto file = expr::parseFeaturesFile(trial.features, "bench", environment->stateNames(),
-                                            environment->name());
-  const jit::CompiledFeatureMap map(file.genome, environment->stateDim());
-  rl::PolicyGradientConfig config;
-  for (const auto& [k, v] : trial.learner) rl::applyPolicyGradientParam(config, k, v);
-  rl::PolicyGradientConfig reference = config, fast = config;
-  reference.lockstep = false;
-  fast.lockstep = true;
+  PgSetup s(trial);
+  env::Environment& environment = *s.environment;
   Path slow, quick;
   std::uint64_t seed = 0;
   for (auto _ : state) {
     ++seed;
     slow.time([&] {
       Rng rng(seed);
-      return rl::trainPolicyGradient(*environment, map, reference, rng).steps;
+      return rl::trainPolicyGradient(environment, s.map, s.reference, rng).steps;
     });
     quick.time([&] {
       Rng rng(seed);
-      return rl::trainPolicyGradient(*environment, map, fast, rng).steps;
+      return rl::trainPolicyGradient(environment, s.map, s.fast, rng).steps;
     });
   }
   report(state, slow, quick, "step");
@@ -110,15 +123,8 @@ const PgTrial kSwimmer5{"swimmer",
 // swimmers): reference = one trial after another, episodes one after another; fast = every
 // trial's episodes of an update side by side (trainPolicyGradientRuns).
 void pgFitness(benchmark::State& state, const PgTrial& trial, int trials) {
-  const auto environment = env::Registry::global().make(trial.env, trial.envParams);
-  const auto file = expr::parseFeaturesFile(trial.features, "bench", environment->stateNames(),
-                                            environment->name());
-  const jit::CompiledFeatureMap map(file.genome, environment->stateDim());
-  rl::PolicyGradientConfig config;
-  for (const auto& [k, v] : trial.learner) rl::applyPolicyGradientParam(config, k, v);
-  rl::PolicyGradientConfig reference = config, fast = config;
-  reference.lockstep = false;
-  fast.lockstep = true;
+  PgSetup s(trial);
+  env::Environment& environment = *s.environment;
   Path slow, quick;
   std::uint64_t seed = 0;
   for (auto _ : state) {
@@ -127,7 +133,7 @@ void pgFitness(benchmark::State& state, const PgTrial& trial, int trials) {
       std::int64_t steps = 0;
       for (int t = 0; t < trials; ++t) {
         Rng rng(deriveSeed(seed, t));
-        steps += rl::trainPolicyGradient(*environment, map, reference, rng).steps;
+        steps += rl::trainPolicyGradient(environment, s.map, s.reference, rng).steps;
       }
       return steps;
     });
@@ -135,7 +141,7 @@ void pgFitness(benchmark::State& state, const PgTrial& trial, int trials) {
       std::vector<Rng> rngs;
       for (int t = 0; t < trials; ++t) rngs.emplace_back(deriveSeed(seed, t));
       std::int64_t steps = 0;
-      for (const auto& curve : rl::trainPolicyGradientRuns(*environment, map, fast, rngs)) {
+      for (const auto& curve : rl::trainPolicyGradientRuns(environment, s.map, s.fast, rngs)) {
         steps += curve.steps;
       }
       return steps;

@@ -1,6 +1,8 @@
 // env: batched cart-pole and Acrobot.
 #include <fmt/format.h>
 
+#include <string>
+
 #include "acrobot_dynamics.hpp"
 #include "batch_driver.hpp"
 #include "batch_factories.hpp"
@@ -11,7 +13,7 @@ namespace gpfd::env::batch {
 namespace {
 
 // Throws InputError unless every lane's discrete action is an integer in [0, choices).
-void checkChoices(const BatchBuffers& io, int choices, const char* env) {
+void checkChoices(const BatchBuffers& io, int choices, const std::string& env) {
   for (std::size_t l = 0; l < io.lanes; ++l) {
     const double a = io.action[l];
     if (!(a >= 0.0 && a < choices && a == static_cast<int>(a))) {
@@ -33,20 +35,6 @@ struct CartPoleKernel {
   }
 };
 
-class CartPoleBatch final : public BatchEnvironment {
- public:
-  CartPoleBatch(const CartPole& env, BatchIsa isa)
-      : BatchEnvironment(std::make_unique<CartPole>(env.config()), isa), kernel_{env.config()} {}
-
-  void step(const BatchBuffers& io) const override {
-    if (kernel_.config.discrete) checkChoices(io, 2, "cartpole");
-    stepAll<4, 1>(kernel_, io, usesAvx2(), kernel_.config.maxSteps);
-  }
-
- private:
-  CartPoleKernel kernel_;
-};
-
 struct AcrobotKernel {
   AcrobotConfig config;
 
@@ -59,28 +47,30 @@ struct AcrobotKernel {
   }
 };
 
-class AcrobotBatch final : public BatchEnvironment {
+// Cart-pole or Acrobot: four state variables, one action component, `choices` discrete actions.
+template <class Env, class Kernel, int choices>
+class ClassicBatch final : public BatchEnvironment {
  public:
-  AcrobotBatch(const Acrobot& env, BatchIsa isa)
-      : BatchEnvironment(std::make_unique<Acrobot>(env.config()), isa), kernel_{env.config()} {}
+  ClassicBatch(const Env& env, BatchIsa isa)
+      : BatchEnvironment(std::make_unique<Env>(env.config()), isa), kernel_{env.config()} {}
 
   void step(const BatchBuffers& io) const override {
-    if (kernel_.config.discrete) checkChoices(io, 3, "acrobot");
+    if (kernel_.config.discrete) checkChoices(io, choices, scalar().name());
     stepAll<4, 1>(kernel_, io, usesAvx2(), kernel_.config.maxSteps);
   }
 
  private:
-  AcrobotKernel kernel_;
+  Kernel kernel_;
 };
 
 }  // namespace
 
 std::unique_ptr<BatchEnvironment> makeCartPole(const CartPole& env, BatchIsa isa) {
-  return std::make_unique<CartPoleBatch>(env, isa);
+  return std::make_unique<ClassicBatch<CartPole, CartPoleKernel, 2>>(env, isa);
 }
 
 std::unique_ptr<BatchEnvironment> makeAcrobot(const Acrobot& env, BatchIsa isa) {
-  return std::make_unique<AcrobotBatch>(env, isa);
+  return std::make_unique<ClassicBatch<Acrobot, AcrobotKernel, 3>>(env, isa);
 }
 
 }  // namespace gpfd::env::batch
