@@ -5,9 +5,11 @@
 #include <string>
 #include <vector>
 
+#include "gpfd/env/batch.hpp"
 #include "gpfd/env/environment.hpp"
 #include "gpfd/env/swimmer.hpp"
 #include "gpfd/env/tetris.hpp"
+#include "gpfd/util/cpu.hpp"
 
 namespace {
 
@@ -121,6 +123,53 @@ void BM_TetrisDecision(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(placements) / static_cast<double>(i));
 }
 
+// The batched environment (env/batch.hpp): a batch of lanes from random starts stepped on random
+// actions, each lane reset when its episode ends; ns per lane-step (items). Arguments: lanes, and
+// 1 for the AVX2 lanes or 0 for one lane at a time.
+void stepBatch(benchmark::State& state, const std::string& name, const Params& params) {
+  const BatchIsa isa = state.range(1) != 0 ? BatchIsa::Avx2 : BatchIsa::Scalar;
+  if (isa == BatchIsa::Avx2 && !gpfd::cpuHasAvx2()) {
+    state.SkipWithError("no AVX2");
+    return;
+  }
+  const auto batch = makeBatchEnvironment(name, params, isa);
+  const auto lanes = static_cast<std::size_t>(state.range(0));
+  const std::size_t dim = batch->stateDim(), components = batch->actionComponents();
+  std::vector<double> states(dim * lanes), rewards(lanes);
+  std::vector<std::int32_t> elapsed(lanes);
+  std::vector<std::uint8_t> terminated(lanes), truncated(lanes);
+  Rng rng(1);
+  // 64 pre-drawn action batches, used in turn.
+  std::vector<double> actions(64 * components * lanes);
+  const ActionSpace space = batch->scalar().actionSpace();
+  for (std::size_t i = 0; i < actions.size(); ++i) {
+    const std::size_t c = (i / lanes) % components;
+    actions[i] = space.continuous() ? rng.uniform(space.low[c], space.high[c])
+                                    : static_cast<double>(rng.below(space.choices));
+  }
+  BatchBuffers io{lanes,          lanes,          states.data(),     nullptr,
+                  elapsed.data(), rewards.data(), terminated.data(), truncated.data()};
+  for (std::size_t l = 0; l < lanes; ++l) batch->reset(rng, io, l);
+  std::size_t t = 0;
+  for (auto _ : state) {
+    io.action = actions.data() + (t++ & 63) * components * lanes;
+    batch->step(io);
+    for (std::size_t l = 0; l < lanes; ++l) {
+      if (terminated[l] || truncated[l]) batch->reset(rng, io, l);
+    }
+    benchmark::DoNotOptimize(states.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(lanes));
+}
+
+void BM_BatchCartPole(benchmark::State& s) { stepBatch(s, "cartpole", {}); }
+void BM_BatchAcrobot(benchmark::State& s) { stepBatch(s, "acrobot", {}); }
+void BM_BatchSwimmer3(benchmark::State& s) { stepBatch(s, "swimmer", {{"segments", "3"}}); }
+void BM_BatchSwimmer5(benchmark::State& s) { stepBatch(s, "swimmer", {{"segments", "5"}}); }
+void batchArgs(benchmark::internal::Benchmark* b) {
+  for (const int lanes : {1, 4, 10, 64}) b->Args({lanes, 0})->Args({lanes, 1});
+}
+
 BENCHMARK(BM_Acrobot);
 BENCHMARK(BM_AcrobotDiscrete);
 BENCHMARK(BM_CartPole);
@@ -132,6 +181,10 @@ BENCHMARK(BM_SwimmerOneEulerStep)->Arg(3)->Arg(5);
 BENCHMARK(BM_SwimmerOneRk4Step)->Arg(3)->Arg(5);
 BENCHMARK(BM_TetrisStep);
 BENCHMARK(BM_TetrisDecision)->Args({12, 8})->Args({20, 10});
+BENCHMARK(BM_BatchCartPole)->Apply(batchArgs);
+BENCHMARK(BM_BatchAcrobot)->Apply(batchArgs);
+BENCHMARK(BM_BatchSwimmer3)->Apply(batchArgs);
+BENCHMARK(BM_BatchSwimmer5)->Apply(batchArgs);
 
 }  // namespace
 

@@ -1,8 +1,20 @@
-// Speed of the learners: episodes per second of a policy-gradient trial on Acrobot with 8
-// compiled features, games per second of lambda-PI on 12 x 8 Tetris, and the learner's own share
-// of a trial: each trial is timed beside a bare loop that makes the same number of environment
-// steps and feature calls (random actions, no learner). Overhead = 1 - bare / trial, per step.
+// Speed of the learners, side by side in one run: each iteration plays the same short trial (same
+// seed, so the same episodes and steps) on the reference path and on the fast path, and times
+// each by the CPU time of this thread (so that other processes on a shared machine disturb the
+// ratio little). Counters: ns per environment step (PG) or per decision (lambda-PI) of each path,
+// and their ratio.
+//   PG trials (cart-pole, Acrobot, 3- and 5-segment swimmer; the configs' short trials, with
+//   features of the kind GP discovers): reference = episodes one after another (lockstep=false),
+//   fast = lockstep episodes through the batched environment.
+//   Tetris lambda-PI (12 x 8, the 18 variables, Bertsekas-Ioffe start): reference = afterstates
+//   placement by placement, fast = afterstates in bulk.
 #include <benchmark/benchmark.h>
+
+#include <ctime>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "gpfd/env/environment.hpp"
 #include "gpfd/env/tetris.hpp"
@@ -16,64 +28,153 @@ namespace {
 
 using namespace gpfd;
 
-jit::CompiledFeatureMap acrobotFeatures() {
-  const auto file = expr::parseFeaturesFile(
-      "sin(th1)\ncos(th1)\nsin(th2)\ncos(th2)\ndth1\ndth2\nsin(th1 + th2) * dth1\ncos(th1 + th2)\n",
-      "bench", {"th1", "th2", "dth1", "dth2"}, "acrobot");
-  return jit::CompiledFeatureMap(file.genome, 4);
+double threadSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-// A PG trial: 20 updates of 10 episodes (210 episodes).
-void BM_PgTrialAcrobot(benchmark::State& state) {
-  const auto env = env::Registry::global().make("acrobot");
-  const auto map = acrobotFeatures();
-  rl::PolicyGradientConfig config;
-  config.updates = 20;
-  std::int64_t episodes = 0, steps = 0;
+// Accumulates the time and the work of one path.
+struct Path {
+  double seconds = 0.0;
+  std::int64_t units = 0;
+
+  template <class Run>
+  void time(Run&& run) {
+    const double start = threadSeconds();
+    units += run();
+    seconds += threadSeconds() - start;
+  }
+  double nsPerUnit() const { return units > 0 ? 1e9 * seconds / static_cast<double>(units) : 0.0; }
+};
+
+void report(benchmark::State& state, const Path& reference, const Path& fast, const char* unit) {
+  state.counters[std::string("reference_ns/") + unit] = reference.nsPerUnit();
+  state.counters[std::string("fast_ns/") + unit] = fast.nsPerUnit();
+  state.counters["speedup"] = fast.seconds > 0 ? reference.seconds / fast.seconds : 0.0;
+}
+
+struct PgTrial {
+  std::string env;
+  Params envParams;
+  std::string features;  // A features file over the state variables.
+  int updates = 30;
+  int episodes = 10;
+  double std = 0.0;  // The policy's initial standard deviation; 0: the learner's default.
+};
+
+// A trial's environment, compiled features, and the learner settings of both paths.
+struct PgSetup {
+  explicit PgSetup(const PgTrial& trial)
+      : environment(env::Registry::global().make(trial.env, trial.envParams)),
+        map(expr::parseFeaturesFile(trial.features, "bench", environment->stateNames(),
+                                    environment->name())
+                .genome,
+            environment->stateDim()) {
+    reference.updates = trial.updates;
+    reference.episodesPerUpdate = trial.episodes;
+    if (trial.std > 0) reference.policy.initialStd = trial.std;
+    fast = reference;
+    reference.lockstep = false;
+    fast.lockstep = true;
+  }
+
+  std::unique_ptr<env::Environment> environment;
+  jit::CompiledFeatureMap map;
+  rl::PolicyGradientConfig reference, fast;
+};
+
+void pgTrial(benchmark::State& state, const PgTrial& trial) {
+  PgSetup s(trial);
+  env::Environment& environment = *s.environment;
+  Path slow, quick;
   std::uint64_t seed = 0;
   for (auto _ : state) {
-    Rng rng(++seed);
-    const auto curve = rl::trainPolicyGradient(*env, map, config, rng);
-    episodes += curve.episodes;
-    steps += curve.steps;
+    ++seed;
+    slow.time([&] {
+      Rng rng(seed);
+      return rl::trainPolicyGradient(environment, s.map, s.reference, rng).steps;
+    });
+    quick.time([&] {
+      Rng rng(seed);
+      return rl::trainPolicyGradient(environment, s.map, s.fast, rng).steps;
+    });
   }
-  state.counters["episodes/s"] =
-      benchmark::Counter(static_cast<double>(episodes), benchmark::Counter::kIsRate);
-  state.counters["ns/step"] = benchmark::Counter(
-      static_cast<double>(steps), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  report(state, slow, quick, "step");
 }
-BENCHMARK(BM_PgTrialAcrobot)->Unit(benchmark::kMillisecond);
 
-// The same work without the learner: reset, features and a step per step, random actions.
-void BM_BareStepsAcrobot(benchmark::State& state) {
-  const auto env = env::Registry::global().make("acrobot");
-  const auto map = acrobotFeatures();
-  std::vector<double> phi(map.outputDim());
-  double action = 0.0;
-  std::int64_t steps = 0;
-  Rng rng(1);
+// The configs' short trials (configs/*-quick.toml), with features like the ones GP found there.
+const PgTrial kCartPole{
+    "cartpole", {{"max_steps", "1000"}}, "dx\n2 * th\nth / 0.1888\nsin(dth)\n", 30, 10};
+const PgTrial kAcrobot{"acrobot",
+                       {{"max_steps", "3000"}},
+                       "sin(th1)\ncos(th1)\nsin(th2)\ncos(th2)\ndth1\ndth2\n"
+                       "sin(th1 + th2) * dth1\ncos(th1 + th2)\n",
+                       30,
+                       10,
+                       1.0};
+const PgTrial kSwimmer3{"swimmer",
+                        {{"segments", "3"}, {"horizon", "100"}},
+                        "sin(th2)\nth2 - dth1\n2 * th1\nth2\n",
+                        30,
+                        10};
+const PgTrial kSwimmer5{
+    "swimmer", {{"segments", "5"}, {"horizon", "100"}}, "th1\nsin(th5)\ndth2\n", 30, 10};
+
+// The trials of one fitness evaluation (configs' `trials`: 5 on cart-pole and Acrobot, 4 on the
+// swimmers): reference = one trial after another, episodes one after another; fast = every
+// trial's episodes of an update side by side (trainPolicyGradientRuns).
+void pgFitness(benchmark::State& state, const PgTrial& trial, int trials) {
+  PgSetup s(trial);
+  env::Environment& environment = *s.environment;
+  Path slow, quick;
+  std::uint64_t seed = 0;
   for (auto _ : state) {
-    env->reset(rng);
-    for (int t = 0; t < 500; ++t) {
-      map.evaluate(env->state().data(), phi.data());
-      benchmark::DoNotOptimize(phi.data());
-      action = rng.uniform(-1.0, 1.0);
-      const auto r = env->step(std::span<const double>(&action, 1));
-      ++steps;
-      if (r.terminated || r.truncated) break;
-    }
+    ++seed;
+    slow.time([&] {
+      std::int64_t steps = 0;
+      for (int t = 0; t < trials; ++t) {
+        Rng rng(deriveSeed(seed, t));
+        steps += rl::trainPolicyGradient(environment, s.map, s.reference, rng).steps;
+      }
+      return steps;
+    });
+    quick.time([&] {
+      std::vector<Rng> rngs;
+      for (int t = 0; t < trials; ++t) rngs.emplace_back(deriveSeed(seed, t));
+      std::int64_t steps = 0;
+      for (const auto& curve : rl::trainPolicyGradientRuns(environment, s.map, s.fast, rngs)) {
+        steps += curve.steps;
+      }
+      return steps;
+    });
   }
-  state.counters["ns/step"] = benchmark::Counter(
-      static_cast<double>(steps), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  report(state, slow, quick, "step");
 }
-BENCHMARK(BM_BareStepsAcrobot)->Unit(benchmark::kMillisecond);
+
+void BM_PgTrialCartPole(benchmark::State& state) { pgTrial(state, kCartPole); }
+void BM_PgTrialAcrobot(benchmark::State& state) { pgTrial(state, kAcrobot); }
+void BM_PgTrialSwimmer3(benchmark::State& state) { pgTrial(state, kSwimmer3); }
+void BM_PgTrialSwimmer5(benchmark::State& state) { pgTrial(state, kSwimmer5); }
+BENCHMARK(BM_PgTrialCartPole)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+BENCHMARK(BM_PgTrialAcrobot)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+BENCHMARK(BM_PgTrialSwimmer3)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+BENCHMARK(BM_PgTrialSwimmer5)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+
+void BM_PgFitnessCartPole(benchmark::State& state) { pgFitness(state, kCartPole, 5); }
+void BM_PgFitnessAcrobot(benchmark::State& state) { pgFitness(state, kAcrobot, 5); }
+void BM_PgFitnessSwimmer3(benchmark::State& state) { pgFitness(state, kSwimmer3, 4); }
+void BM_PgFitnessSwimmer5(benchmark::State& state) { pgFitness(state, kSwimmer5, 4); }
+BENCHMARK(BM_PgFitnessCartPole)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+BENCHMARK(BM_PgFitnessAcrobot)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+BENCHMARK(BM_PgFitnessSwimmer3)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+BENCHMARK(BM_PgFitnessSwimmer5)->Unit(benchmark::kMillisecond)->MinTime(3.0);
 
 // Lambda-PI on 12 x 8 with the paper's 18 state variables: 2 iterations of 10 games from the
-// Bertsekas-Ioffe start (short games, so that a run takes milliseconds).
+// Bertsekas-Ioffe start (short games, so that a run takes milliseconds). Unit: a decision (one
+// move: every placement of the piece evaluated and the best one played).
 void BM_LpiTetris(benchmark::State& state) {
   env::Tetris tetris;
-  rl::GameAfterstateProblem problem(tetris, tetris);
-  const features::RawFeatureMap map(tetris.stateDim());
   rl::LambdaPolicyIterationConfig config;
   config.iterations = 2;
   config.gamesPerIteration = 10;
@@ -81,47 +182,23 @@ void BM_LpiTetris(benchmark::State& state) {
   config.initialWeights =
       env::Tetris(env::TetrisConfig::fromParams({{"state", "bertsekas"}})).knownValueWeights();
   config.initialWeights.push_back(0.0);
-  std::int64_t games = 0, moves = 0;
+  const features::RawFeatureMap map(tetris.stateDim());
+  Path slow, quick;
   std::uint64_t seed = 0;
   for (auto _ : state) {
-    Rng rng(++seed);
-    const auto curve = rl::trainLambdaPolicyIteration(problem, map, config, rng);
-    games += curve.episodes;
-    moves += curve.steps;
-  }
-  state.counters["games/s"] =
-      benchmark::Counter(static_cast<double>(games), benchmark::Counter::kIsRate);
-  state.counters["ns/move"] = benchmark::Counter(
-      static_cast<double>(moves), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
-}
-BENCHMARK(BM_LpiTetris)->Unit(benchmark::kMillisecond);
-
-// The same without the learner: afterstates, their features and a random non-ending move.
-void BM_BareMovesTetris(benchmark::State& state) {
-  env::Tetris tetris;
-  rl::GameAfterstateProblem problem(tetris, tetris);
-  const features::RawFeatureMap map(tetris.stateDim());
-  std::vector<double> phi;
-  std::int64_t moves = 0;
-  Rng rng(1);
-  for (auto _ : state) {
-    problem.reset(rng);
-    for (int t = 0; t < 100000; ++t) {
-      const auto view = problem.candidates();
-      if (view.count == 0) break;
-      phi.resize(view.count * map.outputDim());
-      map.evaluateBatch(view.states, view.count, phi.data());
-      benchmark::DoNotOptimize(phi.data());
-      const std::size_t pick = rng.below(view.count);
-      ++moves;
-      if (view.ends[pick]) break;
-      problem.choose(pick, rng);
+    ++seed;
+    for (const bool bulk : {false, true}) {
+      (bulk ? quick : slow).time([&] {
+        tetris.setBulkAfterstates(bulk);
+        rl::GameAfterstateProblem problem(tetris, tetris);
+        Rng rng(seed);
+        return rl::trainLambdaPolicyIteration(problem, map, config, rng).steps;
+      });
     }
   }
-  state.counters["ns/move"] = benchmark::Counter(
-      static_cast<double>(moves), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  report(state, slow, quick, "decision");
 }
-BENCHMARK(BM_BareMovesTetris)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LpiTetris)->Unit(benchmark::kMillisecond)->MinTime(3.0);
 
 }  // namespace
 

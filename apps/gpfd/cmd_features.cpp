@@ -10,7 +10,6 @@
 
 #include "command.hpp"
 #include "gpfd/env/simulate.hpp"
-#include "gpfd/util/number.hpp"
 #include "gpfd/expr/export.hpp"
 #include "gpfd/expr/features_file.hpp"
 #include "gpfd/expr/simplify.hpp"
@@ -19,6 +18,7 @@
 #include "gpfd/run/learning_task.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
+#include "gpfd/util/number.hpp"
 
 namespace gpfd::app {
 namespace {

@@ -5,9 +5,9 @@
 #include <nanobind/stl/vector.h>
 
 #include "bindings.hpp"
+#include "gpfd/util/error.hpp"
 #include "gpfd/util/number.hpp"
 #include "gpfd/util/params.hpp"
-#include "gpfd/util/error.hpp"
 #include "gpfd/version.hpp"
 
 namespace gpfd::python {

@@ -6,20 +6,12 @@
 #include <cmath>
 #include <numbers>
 
+#include "acrobot_dynamics.hpp"
 #include "gpfd/env/angles.hpp"
 #include "gpfd/env/common_params.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::env {
-namespace {
-
-// Constants of Gymnasium's Acrobot-v1 (docs/benchmarks.md).
-constexpr double kM1 = 1.0, kM2 = 1.0, kL1 = 1.0, kLc1 = 0.5, kLc2 = 0.5, kI1 = 1.0, kI2 = 1.0;
-constexpr double kG = 9.8;
-constexpr double kPi = std::numbers::pi;
-constexpr double kMaxVel1 = 4 * kPi, kMaxVel2 = 9 * kPi;
-
-}  // namespace
 
 const ParamTable<AcrobotConfig>& AcrobotConfig::table() {
   using Dynamics = AcrobotConfig::Dynamics;
@@ -95,33 +87,16 @@ void Acrobot::setState(std::span<const double> state) {
 }
 
 Acrobot::State Acrobot::derivative(const State& s, double tau) const {
-  const double th1 = s[0], th2 = s[1], dth1 = s[2], dth2 = s[3];
-  const double sin2 = std::sin(th2), cos2 = std::cos(th2);
-  const double d1 =
-      kM1 * kLc1 * kLc1 + kM2 * (kL1 * kL1 + kLc2 * kLc2 + 2 * kL1 * kLc2 * cos2) + kI1 + kI2;
-  const double d2 = kM2 * (kLc2 * kLc2 + kL1 * kLc2 * cos2) + kI2;
-  const double phi2 = kM2 * kLc2 * kG * std::cos(th1 + th2 - kPi / 2.0);
-  const double phi1 = -kM2 * kL1 * kLc2 * (dth2 * dth2) * sin2 -
-                      2 * kM2 * kL1 * kLc2 * dth2 * dth1 * sin2 +
-                      (kM1 * kLc1 + kM2 * kL1) * kG * std::cos(th1 - kPi / 2.0) + phi2;
-  double numerator = tau + d2 / d1 * phi1;
-  if (config_.dynamics == AcrobotConfig::Dynamics::Book) {
-    numerator -= kM2 * kL1 * kLc2 * (dth1 * dth1) * sin2;
-  }
-  numerator -= phi2;
-  const double ddth2 = numerator / (kM2 * kLc2 * kLc2 + kI2 - d2 * d2 / d1);
-  const double ddth1 = -(d2 * ddth2 + phi1) / d1;
-  return {dth1, dth2, ddth1, ddth2};
+  return acrobot::derivative(config_.dynamics, s, tau);
 }
 
 std::vector<StateRange> Acrobot::typicalStateRanges() const {
   // Exact: the angles are wrapped, the velocities clipped (Gymnasium's bounds).
+  using namespace acrobot;
   return {{-kPi, kPi}, {-kPi, kPi}, {-kMaxVel1, kMaxVel1}, {-kMaxVel2, kMaxVel2}};
 }
 
-bool Acrobot::terminal() const {
-  return -std::cos(state_[0]) - std::cos(state_[1] + state_[0]) > 1.0;
-}
+bool Acrobot::terminal() const { return acrobot::terminal(state_); }
 
 double Acrobot::torqueOf(std::span<const double> action) const {
   if (action.size() != 1) {
@@ -134,23 +109,12 @@ double Acrobot::torqueOf(std::span<const double> action) const {
       throw InputError(fmt::format("acrobot discrete action must be 0, 1 or 2, got {}", a),
                        "acrobot action");
     }
-    return (a - 1.0) * config_.maxTorque;
   }
-  if (std::isnan(a)) return 0.0;
-  return std::clamp(a, -config_.maxTorque, config_.maxTorque);
+  return acrobot::torque(config_, a);
 }
 
 StepResult Acrobot::step(std::span<const double> action) {
-  const double tau = torqueOf(action);
-  const double h = config_.dt / config_.substeps;
-  const auto f = [&](const State& s) { return derivative(s, tau); };
-  for (int i = 0; i < config_.substeps; ++i) {
-    state_ = integrateStep<4>(config_.integrator, state_, h, f);
-    state_[0] = wrapAngle(state_[0]);
-    state_[1] = wrapAngle(state_[1]);
-    state_[2] = std::clamp(state_[2], -kMaxVel1, kMaxVel1);
-    state_[3] = std::clamp(state_[3], -kMaxVel2, kMaxVel2);
-  }
+  acrobot::advance(config_, state_, torqueOf(action));
   ++steps_;
   StepResult result;
   result.terminated = terminal();

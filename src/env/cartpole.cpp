@@ -5,19 +5,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cartpole_dynamics.hpp"
 #include "gpfd/env/common_params.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::env {
-namespace {
-
-// Constants of Gymnasium's CartPole-v1 (docs/benchmarks.md).
-constexpr double kMassCart = 1.0, kMassPole = 0.1, kTotalMass = kMassCart + kMassPole;
-constexpr double kHalfLength = 0.5, kPoleMassLength = kMassPole * kHalfLength;
-constexpr double kXThreshold = 2.4;
-constexpr double kThetaThreshold = 12 * 2 * 3.141592653589793 / 360;  // 0.20943951023931953
-
-}  // namespace
 
 const ParamTable<CartPoleConfig>& CartPoleConfig::table() {
   static const auto table = [] {
@@ -88,28 +80,17 @@ void CartPole::setState(std::span<const double> state) {
 }
 
 CartPole::State CartPole::derivative(const State& s, double force) const {
-  const double dx = s[1], th = s[2], dth = s[3];
-  const double cosTh = std::cos(th), sinTh = std::sin(th);
-  // Same operation order as Gymnasium's cartpole.py.
-  const double temp = (force + kPoleMassLength * (dth * dth) * sinTh) / kTotalMass;
-  const double ddth = (config_.gravity * sinTh - cosTh * temp) /
-                      (kHalfLength * (4.0 / 3.0 - kMassPole * (cosTh * cosTh) / kTotalMass));
-  const double ddx = temp - kPoleMassLength * ddth * cosTh / kTotalMass;
-  return {dx, ddx, dth, ddth};
+  return cartpole::derivative(config_.gravity, s, force);
 }
 
 std::vector<StateRange> CartPole::typicalStateRanges() const {
   // x and th: the failure limits; dx and dth: seen within episodes under random forces.
-  return {{-kXThreshold, kXThreshold},
-          {-3.0, 3.0},
-          {-0.20943951023931953, 0.20943951023931953},
-          {-3.5, 3.5}};
+  using cartpole::kThetaThreshold, cartpole::kXThreshold;
+  return {
+      {-kXThreshold, kXThreshold}, {-3.0, 3.0}, {-kThetaThreshold, kThetaThreshold}, {-3.5, 3.5}};
 }
 
-bool CartPole::terminal() const {
-  return state_[0] < -kXThreshold || state_[0] > kXThreshold || state_[2] < -kThetaThreshold ||
-         state_[2] > kThetaThreshold;
-}
+bool CartPole::terminal() const { return cartpole::terminal(state_); }
 
 double CartPole::forceOf(std::span<const double> action) const {
   if (action.size() != 1) {
@@ -122,19 +103,12 @@ double CartPole::forceOf(std::span<const double> action) const {
       throw InputError(fmt::format("cartpole discrete action must be 0 or 1, got {}", a),
                        "cartpole action");
     }
-    return a == 1.0 ? config_.maxForce : -config_.maxForce;
   }
-  if (std::isnan(a)) return 0.0;
-  return std::clamp(a, -config_.maxForce, config_.maxForce);
+  return cartpole::force(config_, a);
 }
 
 StepResult CartPole::step(std::span<const double> action) {
-  const double force = forceOf(action);
-  const double h = config_.dt / config_.substeps;
-  const auto f = [&](const State& s) { return derivative(s, force); };
-  for (int i = 0; i < config_.substeps; ++i) {
-    state_ = integrateStep<4>(config_.integrator, state_, h, f);
-  }
+  cartpole::advance(config_, state_, forceOf(action));
   ++steps_;
   StepResult result;
   result.terminated = terminal();

@@ -8,6 +8,7 @@
 
 #include "gpfd/env/angles.hpp"
 #include "gpfd/env/common_params.hpp"
+#include "gpfd/expr/trig.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::env {
@@ -179,8 +180,8 @@ void Swimmer::derivativeReference(std::span<const double> s, std::span<const dou
   const auto n = static_cast<std::size_t>(n_);
   const double k = config_.viscosity;
   for (std::size_t i = 0; i < n; ++i) {
-    cos_[i] = std::cos(s[2 + 2 * i]);
-    sin_[i] = std::sin(s[2 + 2 * i]);
+    cos_[i] = expr::trig::cos(s[2 + 2 * i]);
+    sin_[i] = expr::trig::sin(s[2 + 2 * i]);
   }
   // Centre velocities G'_i relative to A'_0 = 0, then shifted so that sum m_i G'_i / M = G'.
   double ax = 0.0, ay = 0.0, meanX = 0.0, meanY = 0.0;

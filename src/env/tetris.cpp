@@ -199,7 +199,7 @@ void Tetris::sampleAction(Rng& rng, std::span<double> action) const {
   }
 }
 
-void Tetris::afterstates(TetrisAfterstates& out) const {
+void Tetris::afterstatesReference(TetrisAfterstates& out) const {
   const int count = placementCount(piece_, config_.cols);
   const std::size_t dim = state_.size();
   out.featureDim = dim;
@@ -226,7 +226,11 @@ namespace gpfd::env {
 
 AfterstateView Tetris::candidates() {
   if (gameOver_) return {};
-  afterstates(afterstates_);
+  if (bulkAfterstates_) {
+    afterstates(afterstates_);
+  } else {
+    afterstatesReference(afterstates_);
+  }
   const std::size_t n = afterstates_.placements.size();
   rewards_.resize(n);
   ends_.resize(n);

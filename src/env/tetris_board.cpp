@@ -9,6 +9,18 @@
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::env {
+namespace {
+
+// Set bits of a row, by the parallel-sum method (Hacker's Delight, section 5-1): std::popcount
+// becomes a libgcc call where the target has no POPCNT instruction (baseline x86-64).
+int cellCount(std::uint32_t v) {
+  v = v - ((v >> 1) & 0x55555555u);
+  v = (v & 0x33333333u) + ((v >> 2) & 0x33333333u);
+  v = (v + (v >> 4)) & 0x0f0f0f0fu;
+  return static_cast<int>((v * 0x01010101u) >> 24);
+}
+
+}  // namespace
 
 TetrisBoard::TetrisBoard(int rows, int cols)
     : rows_(rows), cols_(cols), full_(cols >= 32 ? ~0u : (1u << cols) - 1u) {
@@ -38,7 +50,7 @@ int TetrisBoard::holes() const {
   int count = 0;
   for (int r = rows_ + 3; r >= 0; --r) {
     const std::uint32_t row = cells_[static_cast<std::size_t>(r)];
-    count += std::popcount(~row & seen & full_);
+    count += cellCount(~row & seen & full_);
     seen |= row;
   }
   return count;
@@ -73,9 +85,11 @@ DropOutcome TetrisBoard::drop(int piece, int orientation, int column, const int*
   for (int y = 0; y < o.height; ++y) {
     cells_[static_cast<std::size_t>(base + y)] |= o.rowMask[static_cast<std::size_t>(y)] << column;
   }
-  // Remove the full rows among those the piece touched, from the top down.
+  // Remove the full rows among those the piece touched, from the top down (only up to the hidden
+  // rows: a piece can land higher only on a board set up with filled hidden rows, and the game is
+  // over then).
   DropOutcome outcome;
-  for (int r = base + o.height - 1; r >= base; --r) {
+  for (int r = std::min(base + o.height, rows_ + 4) - 1; r >= base; --r) {
     if (cells_[static_cast<std::size_t>(r)] == full_) {
       std::copy(cells_.begin() + r + 1, cells_.begin() + rows_ + 4, cells_.begin() + r);
       cells_[static_cast<std::size_t>(rows_ + 3)] = 0;
@@ -96,7 +110,7 @@ void TetrisBoard::features(TetrisFeatures kind, int piece, double* out) const {
   int holeCount = 0;
   for (int r = rows_ + 3; r >= 0; --r) {
     const std::uint32_t row = cells_[static_cast<std::size_t>(r)];
-    holeCount += std::popcount(~row & seen & full_);
+    holeCount += cellCount(~row & seen & full_);
     std::uint32_t fresh = row & ~seen;
     while (fresh) {
       heights[static_cast<std::size_t>(std::countr_zero(fresh))] = r + 1;

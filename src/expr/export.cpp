@@ -7,7 +7,6 @@
 #include <utility>
 
 #include "gpfd/expr/trig.hpp"
-
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::expr {

@@ -9,6 +9,7 @@
 
 #include "gpfd/expr/ops.hpp"
 #include "gpfd/jit/trig_avx2.hpp"
+#include "gpfd/util/cpu.hpp"
 
 #if GPFD_HAVE_JIT
 #include <asmjit/x86.h>
@@ -709,21 +710,15 @@ NativeCode::~NativeCode() {
 
 bool jitAvailable() { return true; }
 
-// GPFD_JIT_SSE2=1 makes the JIT use SSE2 only, as on a CPU without AVX (tests use it).
-bool sse2Only() {
-  const char* value = std::getenv("GPFD_JIT_SSE2");
-  return value != nullptr && std::string(value) == "1";
-}
-
 bool hostHasAvx() {
   static const bool has =
-      !sse2Only() && asmjit::CpuInfo::host().hasFeature(asmjit::CpuFeatures::X86::kAVX);
+      !sse2OnlyRequested() && asmjit::CpuInfo::host().hasFeature(asmjit::CpuFeatures::X86::kAVX);
   return has;
 }
 
 bool hostHasAvx2() {
   static const bool has =
-      !sse2Only() && asmjit::CpuInfo::host().hasFeature(asmjit::CpuFeatures::X86::kAVX2);
+      !sse2OnlyRequested() && asmjit::CpuInfo::host().hasFeature(asmjit::CpuFeatures::X86::kAVX2);
   return has;
 }
 

@@ -1,5 +1,6 @@
 #include "gpfd/rl/features.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace gpfd::rl {
@@ -10,26 +11,60 @@ FeaturePipeline::FeaturePipeline(const features::FeatureMap& map, const FeatureO
       raw_(map.outputDim()),
       shift_(raw_, 0.0),
       scale_(raw_, 1.0),
-      mean_(raw_, 0.0),
-      m2_(raw_, 0.0) {}
+      moments_(raw_) {}
+
+void FeatureMoments::clear() {
+  count = 0;
+  std::fill(mean.begin(), mean.end(), 0.0);
+  std::fill(m2.begin(), m2.end(), 0.0);
+}
+
+void FeatureMoments::add(const double* row) {
+  ++count;
+  const double n = static_cast<double>(count);
+  for (std::size_t j = 0; j < mean.size(); ++j) {
+    // Welford's update of the running mean and sum of squared deviations.
+    const double delta = row[j] - mean[j];
+    mean[j] += delta / n;
+    m2[j] += delta * (row[j] - mean[j]);
+  }
+}
+
+void FeatureMoments::merge(const FeatureMoments& other) {
+  if (other.count == 0) return;
+  if (count == 0) {
+    *this = other;
+    return;
+  }
+  const double na = static_cast<double>(count), nb = static_cast<double>(other.count);
+  const double n = na + nb;
+  for (std::size_t j = 0; j < mean.size(); ++j) {
+    const double delta = other.mean[j] - mean[j];
+    mean[j] += delta * (nb / n);
+    m2[j] += other.m2[j] + delta * delta * (na * nb / n);
+  }
+  count += other.count;
+}
+
+bool FeaturePipeline::transform(double* row) const {
+  bool finite = true;
+  for (std::size_t j = 0; j < raw_; ++j) finite = finite && std::isfinite(row[j]);
+  if (!finite) return false;
+  if (options_.normalise) {
+    for (std::size_t j = 0; j < raw_; ++j) row[j] = (row[j] - shift_[j]) / scale_[j];
+  }
+  if (options_.bias) row[raw_] = 1.0;
+  return true;
+}
+
+void FeaturePipeline::merge(const FeatureMoments& moments) { moments_.merge(moments); }
 
 bool FeaturePipeline::finish(double* row) {
   bool finite = true;
   for (std::size_t j = 0; j < raw_; ++j) finite = finite && std::isfinite(row[j]);
   if (!finite) return false;
-  if (options_.normalise) {
-    ++count_;
-    const double n = static_cast<double>(count_);
-    for (std::size_t j = 0; j < raw_; ++j) {
-      // Welford's update of the running mean and sum of squared deviations.
-      const double delta = row[j] - mean_[j];
-      mean_[j] += delta / n;
-      m2_[j] += delta * (row[j] - mean_[j]);
-      row[j] = (row[j] - shift_[j]) / scale_[j];
-    }
-  }
-  if (options_.bias) row[raw_] = 1.0;
-  return true;
+  if (options_.normalise) moments_.add(row);
+  return transform(row);
 }
 
 bool FeaturePipeline::evaluate(const double* state, double* out) {
@@ -42,8 +77,12 @@ bool FeaturePipeline::evaluateBatch(const double* states, std::size_t n, double*
   if (!options_.bias) {
     map_->evaluateBatch(states, n, out);
   } else {
-    // The map writes rows of raw_ values; evaluate in place row by row to leave room for the bias.
-    for (std::size_t i = 0; i < n; ++i) map_->evaluate(states + i * stateDim(), out + i * width);
+    // The map writes rows of raw_ values: one batch call, then each row moved to its place (from
+    // the last, so that no row is overwritten before it moves), leaving room for the bias.
+    map_->evaluateBatch(states, n, out);
+    for (std::size_t i = n; i-- > 1;) {
+      std::copy_backward(out + i * raw_, out + (i + 1) * raw_, out + i * width + raw_);
+    }
   }
   bool finite = true;
   for (std::size_t i = 0; i < n; ++i) finite = finish(out + i * width) && finite;
@@ -51,13 +90,13 @@ bool FeaturePipeline::evaluateBatch(const double* states, std::size_t n, double*
 }
 
 void FeaturePipeline::refresh(double* weights, std::size_t rows) {
-  if (!options_.normalise || count_ < 2) return;
+  if (!options_.normalise || moments_.count < 2) return;
   const std::size_t width = dim();
   std::vector<double> newShift(raw_), newScale(raw_);
   for (std::size_t j = 0; j < raw_; ++j) {
-    const double sd = std::sqrt(m2_[j] / static_cast<double>(count_ - 1));
+    const double sd = std::sqrt(moments_.m2[j] / static_cast<double>(moments_.count - 1));
     newScale[j] = (std::isfinite(sd) && sd > 1e-12) ? sd : 1.0;
-    newShift[j] = options_.bias ? mean_[j] : 0.0;
+    newShift[j] = options_.bias ? moments_.mean[j] : 0.0;
   }
   // Output w.(phi - s)/c + b must stay the same under (s', c'):
   // w'_j = w_j c'_j / c_j, b' = b + sum_j w_j (s'_j - s_j) / c_j.

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "gpfd/util/error.hpp"
+#include "gpfd/util/ziggurat.hpp"
 
 namespace gpfd::rl {
 
@@ -38,6 +39,7 @@ LinearPolicy::LinearPolicy(const env::ActionSpace& space, std::size_t featureDim
     params_[static_cast<Eigen::Index>(outputs_ * featureDim_ + i)] = std::log(options.initialStd);
   }
   out_.assign(outputs_, 0.0);
+  coefficient_.assign(outputs_, 0.0);
 }
 
 void LinearPolicy::clampParameters() {
@@ -62,15 +64,44 @@ bool LinearPolicy::computeOutputs(const double* phi) {
   return finite;
 }
 
+double LinearPolicy::stdOf(std::size_t i) const {
+  return options_.learnStd
+             ? std::exp(params_[static_cast<Eigen::Index>(outputs_ * featureDim_ + i)])
+             : options_.initialStd;
+}
+
+std::size_t LinearPolicy::drawChoice(double* z, Rng& rng, double* coefficient) const {
+  // Softmax, shifted by the largest logit: p_k = exp(z_k - max) / sum.
+  const double top = *std::max_element(z, z + outputs_);
+  double total = 0.0;
+  for (std::size_t k = 0; k < outputs_; ++k) {
+    z[k] = std::exp(z[k] - top);
+    total += z[k];
+  }
+  const double draw = rng.uniform() * total;
+  std::size_t chosen = outputs_ - 1;
+  double cumulative = 0.0;
+  for (std::size_t k = 0; k < outputs_; ++k) {
+    cumulative += z[k];
+    if (draw < cumulative) {
+      chosen = k;
+      break;
+    }
+  }
+  // d log p_a / d theta_kj = (1[k = a] - p_k) phi_j.
+  for (std::size_t k = 0; k < outputs_; ++k) {
+    coefficient[k] = (k == chosen ? 1.0 : 0.0) - z[k] / total;
+  }
+  return chosen;
+}
+
 bool LinearPolicy::sample(Rng& rng, const double* phi, double* action, double* grad) {
   if (!computeOutputs(phi)) return false;
   if (continuous_) {
     const std::size_t weightCount = outputs_ * featureDim_;
     for (std::size_t i = 0; i < outputs_; ++i) {
-      const double sd = options_.learnStd
-                            ? std::exp(params_[static_cast<Eigen::Index>(weightCount + i)])
-                            : options_.initialStd;
-      const double eps = rng.normal();
+      const double sd = stdOf(i);
+      const double eps = standardNormal(rng);
       const double u = out_[i] + sd * eps;
       action[i] = centre_[i] + halfWidth_[i] * u;
       // Gaussian log likelihood: d/d theta_ij = (u - mu_i) / sd^2 * phi_j,
@@ -82,30 +113,11 @@ bool LinearPolicy::sample(Rng& rng, const double* phi, double* action, double* g
     }
     return true;
   }
-  // Softmax, shifted by the largest logit: p_k = exp(z_k - max) / sum.
-  const double top = *std::max_element(out_.begin(), out_.end());
-  double total = 0.0;
-  for (auto& z : out_) {
-    z = std::exp(z - top);
-    total += z;
-  }
-  const double draw = rng.uniform() * total;
-  std::size_t chosen = outputs_ - 1;
-  double cumulative = 0.0;
+  action[0] = static_cast<double>(drawChoice(out_.data(), rng, coefficient_.data()));
   for (std::size_t k = 0; k < outputs_; ++k) {
-    cumulative += out_[k];
-    if (draw < cumulative) {
-      chosen = k;
-      break;
-    }
-  }
-  // d log p_a / d theta_kj = (1[k = a] - p_k) phi_j.
-  for (std::size_t k = 0; k < outputs_; ++k) {
-    const double coefficient = (k == chosen ? 1.0 : 0.0) - out_[k] / total;
     double* g = grad + k * featureDim_;
-    for (std::size_t j = 0; j < featureDim_; ++j) g[j] += coefficient * phi[j];
+    for (std::size_t j = 0; j < featureDim_; ++j) g[j] += coefficient_[k] * phi[j];
   }
-  action[0] = static_cast<double>(chosen);
   return true;
 }
 

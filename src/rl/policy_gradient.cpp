@@ -5,24 +5,15 @@
 #include <cmath>
 #include <vector>
 
+#include "episode_players.hpp"
 #include "gpfd/rl/gradient_estimator.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::rl {
 namespace {
 
-struct EpisodeOutcome {
-  double undiscounted = 0.0;
-  double discounted = 0.0;
-  std::int64_t steps = 0;
-  bool ok = true;  // False: a non-finite state, feature, action or reward.
-};
-
-// Buffers of one run, allocated once; the step loop allocates nothing.
-struct Workspace {
-  std::vector<double> phi, action;
-  Eigen::VectorXd eligibility;
-};
+// Episodes played per call of a player at most (evaluations of many episodes go in chunks).
+constexpr std::size_t kMaxLanes = 64;
 
 void checkDimensions(const env::Environment& env, const features::FeatureMap& map) {
   if (map.inputDim() != env.stateDim()) {
@@ -33,43 +24,66 @@ void checkDimensions(const env::Environment& env, const features::FeatureMap& ma
   }
 }
 
-// One episode. When `sampling`, the gradient of log pi is summed into ws.eligibility.
-EpisodeOutcome runEpisode(env::Environment& env, FeaturePipeline& features, LinearPolicy& policy,
-                          Rng& rng, bool sampling, int maxSteps, double discount, Workspace& ws) {
-  EpisodeOutcome outcome;
-  if (sampling) ws.eligibility.setZero();
-  env.reset(rng);
-  const std::span<const double> action(ws.action.data(), policy.actionComponents());
-  double weight = 1.0;
-  for (int t = 0; t < maxSteps; ++t) {
-    if (!features.evaluate(env.state().data(), ws.phi.data())) {
-      outcome.ok = false;
-      return outcome;
+// The learner's objects for one run.
+struct RunState {
+  RunState(env::Environment& env, const features::FeatureMap& map,
+           const PolicyGradientConfig& config)
+      : features(map, config.features),
+        policy(env.actionSpace(), features.dim(), config.policy),
+        rprop(config.rprop, policy.parameterCount()),
+        estimator(policy.parameterCount(), config.optimalBaseline),
+        gradient(policy.parameterCount()) {}
+
+  FeaturePipeline features;
+  LinearPolicy policy;
+  Rprop rprop;
+  EpisodicGradientEstimator estimator;
+  Eigen::VectorXd gradient;
+  LearningCurve curve;
+  std::uint64_t seed = 0;
+  bool learning = true;  // Still playing updates.
+  bool failed = false;   // An episode of the current batch was not ok.
+  double sum = 0.0;      // Of the current batch's returns.
+};
+
+// Runs, the player of their episodes, and the task list: the episodes to play, in run order and
+// episode order within a run.
+struct Learners {
+  Learners(env::Environment& env, const features::FeatureMap& map,
+           const PolicyGradientConfig& config, std::size_t count, int maxSteps, double discount,
+           std::size_t episodesPerCall) {
+    episodes::Setup setup{&env, &map, {}, maxSteps, discount};
+    for (std::size_t k = 0; k < count; ++k) {
+      runs.push_back(std::make_unique<RunState>(env, map, config));
+      setup.runs.push_back({&runs.back()->features, &runs.back()->policy});
     }
-    const bool fine =
-        sampling ? policy.sample(rng, ws.phi.data(), ws.action.data(), ws.eligibility.data())
-                 : policy.greedy(ws.phi.data(), ws.action.data());
-    if (!fine) {
-      outcome.ok = false;
-      return outcome;
-    }
-    const env::StepResult result = env.step(action);
-    ++outcome.steps;
-    // A non-finite state is caught here, not by the features: GP's features map it to finite
-    // values (ops.hpp), which would hide a broken simulation.
-    const auto state = env.state();
-    if (!std::isfinite(result.reward) ||
-        !std::all_of(state.begin(), state.end(), [](double v) { return std::isfinite(v); })) {
-      outcome.ok = false;
-      return outcome;
-    }
-    outcome.undiscounted += result.reward;
-    outcome.discounted += weight * result.reward;
-    weight *= discount;
-    if (result.terminated || result.truncated) break;
+    const std::size_t lanes = std::clamp<std::size_t>(episodesPerCall, 1, kMaxLanes);
+    if (config.lockstep) player = episodes::makeLockstepPlayer(setup, lanes);
+    if (!player) player = episodes::makeSequentialPlayer(setup, lanes);
   }
-  return outcome;
-}
+
+  // Plays `tasks` in chunks of the player's capacity; calls use(task, outcome, index in records)
+  // in task order, skipping the tasks of a run after its first episode that is not ok.
+  template <class Use>
+  void play(bool sampling, Use&& use) {
+    std::vector<std::uint8_t> failed(runs.size(), 0);
+    for (std::size_t first = 0; first < tasks.size(); first += player->capacity()) {
+      const std::size_t n = std::min(tasks.size() - first, player->capacity());
+      const std::span<const episodes::Task> chunk(tasks.data() + first, n);
+      player->play(chunk, sampling, records);
+      for (std::size_t i = 0; i < n; ++i) {
+        if (failed[chunk[i].run]) continue;
+        use(chunk[i], records.outcomes[i], i);
+        if (!records.outcomes[i].ok) failed[chunk[i].run] = 1;
+      }
+    }
+  }
+
+  std::vector<std::unique_ptr<RunState>> runs;
+  std::unique_ptr<episodes::Player> player;
+  std::vector<episodes::Task> tasks;
+  episodes::Records records;
+};
 
 void exportWeights(const LinearPolicy& policy, const FeaturePipeline& features,
                    LinearWeights& out) {
@@ -80,95 +94,125 @@ void exportWeights(const LinearPolicy& policy, const FeaturePipeline& features,
   features.exportTo(out);
 }
 
+// After a batch: the run's row of the curve, then its update (or its end).
+void finishBatch(RunState& run, int update, const PolicyGradientConfig& config) {
+  LearningCurve& curve = run.curve;
+  if (curve.diverged) {
+    run.learning = false;
+    return;
+  }
+  curve.points.push_back({update, curve.episodes, curve.steps,
+                          run.sum / static_cast<double>(config.episodesPerUpdate)});
+  exportWeights(run.policy, run.features, curve.weights);
+  if (config.onPoint) config.onPoint(curve.points.back());
+  if (update == config.updates ||
+      (config.maxTotalSteps > 0 && curve.steps >= config.maxTotalSteps)) {
+    run.learning = false;
+    return;
+  }
+  run.estimator.gradient(run.gradient);
+  if (!run.gradient.allFinite()) {
+    curve.diverged = true;
+    curve.divergedReason = "non-finite gradient estimate";
+    run.learning = false;
+    return;
+  }
+  run.rprop.step(run.gradient, run.policy.parameters());
+  run.policy.clampParameters();
+  run.features.refresh(run.policy.parameters().data(), run.policy.outputs());
+  if (!run.policy.parameters().allFinite()) {
+    curve.diverged = true;
+    curve.divergedReason = "non-finite policy weights";
+    run.learning = false;
+  }
+}
+
 }  // namespace
 
-LearningCurve trainPolicyGradient(env::Environment& env, const features::FeatureMap& map,
-                                  const PolicyGradientConfig& config, Rng& rng) {
+std::vector<LearningCurve> trainPolicyGradientRuns(env::Environment& env,
+                                                   const features::FeatureMap& map,
+                                                   const PolicyGradientConfig& config,
+                                                   std::span<Rng> rngs) {
   checkDimensions(env, map);
   if (config.updates < 0 || config.episodesPerUpdate < 1 || config.maxEpisodeSteps < 1) {
     throw InputError("updates >= 0, episodes per update >= 1, max episode steps >= 1 required",
                      "policy gradient");
   }
   const auto start = std::chrono::steady_clock::now();
-  FeaturePipeline features(map, config.features);
-  LinearPolicy policy(env.actionSpace(), features.dim(), config.policy);
-  Rprop rprop(config.rprop, policy.parameterCount());
-  EpisodicGradientEstimator estimator(policy.parameterCount(), config.optimalBaseline);
-  Workspace ws;
-  ws.phi.assign(features.dim(), 0.0);
-  ws.action.assign(policy.actionComponents(), 0.0);
-  ws.eligibility = Eigen::VectorXd::Zero(policy.parameterCount());
-  Eigen::VectorXd gradient(policy.parameterCount());
-
-  LearningCurve curve;
-  curve.points.reserve(static_cast<std::size_t>(config.updates) + 1);
+  const auto episodesPerUpdate = static_cast<std::size_t>(config.episodesPerUpdate);
+  Learners learners(env, map, config, rngs.size(), config.maxEpisodeSteps, config.discount,
+                    rngs.size() * episodesPerUpdate);
+  for (std::size_t k = 0; k < rngs.size(); ++k) {
+    learners.runs[k]->seed = rngs[k]();
+    learners.runs[k]->curve.points.reserve(static_cast<std::size_t>(config.updates) + 1);
+  }
   for (int update = 0; update <= config.updates; ++update) {
-    estimator.clear();
-    double sum = 0.0;
-    for (int e = 0; e < config.episodesPerUpdate; ++e) {
-      const EpisodeOutcome outcome =
-          runEpisode(env, features, policy, rng, true, config.maxEpisodeSteps, config.discount, ws);
-      curve.steps += outcome.steps;
-      ++curve.episodes;
-      if (!outcome.ok || !std::isfinite(outcome.discounted) ||
-          !std::isfinite(ws.eligibility.sum())) {
-        curve.diverged = true;
-        curve.divergedReason = "non-finite state, feature, action, return or likelihood gradient";
-        break;
+    learners.tasks.clear();
+    for (std::size_t k = 0; k < learners.runs.size(); ++k) {
+      RunState& run = *learners.runs[k];
+      if (!run.learning) continue;
+      run.estimator.clear();
+      run.sum = 0.0;
+      for (int e = 0; e < config.episodesPerUpdate; ++e) {
+        learners.tasks.push_back({k, deriveSeed(run.seed, update, e)});
       }
-      sum += outcome.undiscounted;
-      estimator.addEpisode(ws.eligibility, outcome.discounted);
     }
-    if (curve.diverged) break;
-    curve.points.push_back(
-        {update, curve.episodes, curve.steps, sum / static_cast<double>(config.episodesPerUpdate)});
-    exportWeights(policy, features, curve.weights);
-    if (config.onPoint) config.onPoint(curve.points.back());
-    if (update == config.updates) break;
-    if (config.maxTotalSteps > 0 && curve.steps >= config.maxTotalSteps) break;
-    estimator.gradient(gradient);
-    if (!gradient.allFinite()) {
-      curve.diverged = true;
-      curve.divergedReason = "non-finite gradient estimate";
-      break;
-    }
-    rprop.step(gradient, policy.parameters());
-    policy.clampParameters();
-    features.refresh(policy.parameters().data(), policy.outputs());
-    if (!policy.parameters().allFinite()) {
-      curve.diverged = true;
-      curve.divergedReason = "non-finite policy weights";
-      break;
+    if (learners.tasks.empty()) break;
+    learners.play(true,
+                  [&](const episodes::Task& task, const episodes::Outcome& outcome, std::size_t i) {
+                    RunState& run = *learners.runs[task.run];
+                    run.curve.steps += outcome.steps;
+                    ++run.curve.episodes;
+                    if (!outcome.ok) {
+                      run.curve.diverged = true;
+                      run.curve.divergedReason =
+                          "non-finite state, feature, action, return or likelihood gradient";
+                      return;
+                    }
+                    run.sum += outcome.undiscounted;
+                    run.estimator.addEpisode(learners.records.eligibility[i], outcome.discounted);
+                    if (config.features.normalise) run.features.merge(learners.records.moments[i]);
+                  });
+    for (auto& run : learners.runs) {
+      if (run->learning) finishBatch(*run, update, config);
     }
   }
-  curve.wallSeconds =
+  const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return curve;
+  std::vector<LearningCurve> curves;
+  for (auto& run : learners.runs) {
+    run->curve.wallSeconds = seconds / static_cast<double>(learners.runs.size());
+    curves.push_back(std::move(run->curve));
+  }
+  return curves;
+}
+
+LearningCurve trainPolicyGradient(env::Environment& env, const features::FeatureMap& map,
+                                  const PolicyGradientConfig& config, Rng& rng) {
+  return std::move(trainPolicyGradientRuns(env, map, config, std::span<Rng>(&rng, 1)).front());
 }
 
 Eigen::VectorXd estimatePolicyGradient(env::Environment& env, const features::FeatureMap& map,
                                        const PolicyGradientConfig& config,
                                        const Eigen::VectorXd& parameters, int episodes, Rng& rng) {
   checkDimensions(env, map);
-  FeaturePipeline features(map, config.features);
-  LinearPolicy policy(env.actionSpace(), features.dim(), config.policy);
-  if (parameters.size() != policy.parameterCount()) {
+  const std::uint64_t base = rng();
+  Learners learners(env, map, config, 1, config.maxEpisodeSteps, config.discount,
+                    static_cast<std::size_t>(std::max(episodes, 1)));
+  RunState& run = *learners.runs.front();
+  if (parameters.size() != run.policy.parameterCount()) {
     throw InputError("wrong number of policy parameters", "policy gradient");
   }
-  policy.parameters() = parameters;
-  EpisodicGradientEstimator estimator(policy.parameterCount(), config.optimalBaseline);
-  Workspace ws;
-  ws.phi.assign(features.dim(), 0.0);
-  ws.action.assign(policy.actionComponents(), 0.0);
-  ws.eligibility = Eigen::VectorXd::Zero(policy.parameterCount());
-  for (int e = 0; e < episodes; ++e) {
-    const EpisodeOutcome outcome =
-        runEpisode(env, features, policy, rng, true, config.maxEpisodeSteps, config.discount, ws);
-    if (!outcome.ok || !std::isfinite(outcome.discounted)) return {};
-    estimator.addEpisode(ws.eligibility, outcome.discounted);
-  }
+  run.policy.parameters() = parameters;
+  for (int e = 0; e < episodes; ++e) learners.tasks.push_back({0, deriveSeed(base, e)});
+  bool ok = true;
+  learners.play(true, [&](const episodes::Task&, const episodes::Outcome& outcome, std::size_t i) {
+    ok = ok && outcome.ok;
+    if (ok) run.estimator.addEpisode(learners.records.eligibility[i], outcome.discounted);
+  });
+  if (!ok) return {};
   Eigen::VectorXd gradient;
-  estimator.gradient(gradient);
+  run.estimator.gradient(gradient);
   return gradient;
 }
 
@@ -176,35 +220,32 @@ EvaluationResult evaluatePolicy(env::Environment& env, const features::FeatureMa
                                 const LinearWeights& weights, const PolicyGradientConfig& config,
                                 int episodes, bool greedy, Rng& rng) {
   checkDimensions(env, map);
-  FeaturePipeline features(map, config.features);
-  LinearPolicy policy(env.actionSpace(), features.dim(), config.policy);
-  if (weights.values.size() != static_cast<std::size_t>(policy.parameterCount())) {
+  const std::uint64_t base = rng();
+  Learners learners(env, map, config, 1, config.maxEpisodeSteps, 1.0,
+                    static_cast<std::size_t>(std::max(episodes, 1)));
+  RunState& run = *learners.runs.front();
+  if (weights.values.size() != static_cast<std::size_t>(run.policy.parameterCount())) {
     throw InputError("the weights have " + std::to_string(weights.values.size()) +
-                         " values, the policy needs " + std::to_string(policy.parameterCount()),
+                         " values, the policy needs " + std::to_string(run.policy.parameterCount()),
                      "weights");
   }
   for (std::size_t i = 0; i < weights.values.size(); ++i) {
-    policy.parameters()[static_cast<Eigen::Index>(i)] = weights.values[i];
+    run.policy.parameters()[static_cast<Eigen::Index>(i)] = weights.values[i];
   }
-  features.importFrom(weights);
-  Workspace ws;
-  ws.phi.assign(features.dim(), 0.0);
-  ws.action.assign(policy.actionComponents(), 0.0);
-  ws.eligibility = Eigen::VectorXd::Zero(policy.parameterCount());
+  run.features.importFrom(weights);
+  for (int e = 0; e < episodes; ++e) learners.tasks.push_back({0, deriveSeed(base, e)});
   EvaluationResult result;
   double sum = 0.0, sumSquares = 0.0;
-  for (int e = 0; e < episodes; ++e) {
-    const EpisodeOutcome outcome =
-        runEpisode(env, features, policy, rng, !greedy, config.maxEpisodeSteps, 1.0, ws);
+  learners.play(!greedy, [&](const episodes::Task&, const episodes::Outcome& outcome, std::size_t) {
     result.steps += outcome.steps;
     if (!outcome.ok) {
       result.diverged = true;
-      break;
+      return;
     }
     ++result.episodes;
     sum += outcome.undiscounted;
     sumSquares += outcome.undiscounted * outcome.undiscounted;
-  }
+  });
   if (result.episodes > 0) {
     const double n = static_cast<double>(result.episodes);
     result.meanReturn = sum / n;

@@ -2,9 +2,8 @@
 #include "gpfd/rl/policy_gradient.hpp"
 
 namespace gpfd::rl {
-namespace {
 
-const ParamTable<PolicyGradientConfig>& table() {
+const ParamTable<PolicyGradientConfig>& policyGradientParams() {
   static const auto table = [] {
     ParamTable<PolicyGradientConfig> t("pg");
     t.integer(
@@ -65,13 +64,19 @@ const ParamTable<PolicyGradientConfig>& table() {
             "lower bound of a learned standard deviation")
         .real(
             "max_std", [](auto& c) -> auto& { return c.policy.maxStd; }, 1e-12, 1e6,
-            "upper bound of a learned standard deviation");
+            "upper bound of a learned standard deviation")
+        .flag(
+            "lockstep", [](auto& c) -> auto& { return c.lockstep; },
+            "play an update's episodes side by side (false: one after another, the reference; "
+            "the results are the same)");
     declareFeatureParams(
         t, [](auto& c) -> auto& { return c.features; });
     return t;
   }();
   return table;
 }
+
+namespace {
 
 class PolicyGradientLearner final : public Learner {
  public:
@@ -99,8 +104,10 @@ class PolicyGradientLearner final : public Learner {
 LearnerInfo policyGradientLearner() {
   return {"pg",
           "policy gradient with Rprop and the optimal baseline (Girgin & Preux, section 4)",
-          table().specs(),
-          [](const Params& p) { return std::make_unique<PolicyGradientLearner>(table().read(p)); },
+          policyGradientParams().specs(),
+          [](const Params& p) {
+            return std::make_unique<PolicyGradientLearner>(policyGradientParams().read(p));
+          },
           "actions that are a box of continuous values or one discrete choice",
           [](env::Environment& env) {
             const env::ActionSpace space = env.actionSpace();

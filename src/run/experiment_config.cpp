@@ -191,8 +191,8 @@ void validateAt(const ExperimentConfig& c, const Place& place) {
   const auto learnerParamNames = paramNames(learners.info(c.learner).params);
   requireKnown(c.learnerParams, learnerParamNames, "learner " + c.learner, "learner.params", place);
   requireKnown(c.assessParams, learnerParamNames, "learner " + c.learner, "assess.params", place);
-  requireKnown(c.validation.params, learnerParamNames, "learner " + c.learner,
-               "validation.params", place);
+  requireKnown(c.validation.params, learnerParamNames, "learner " + c.learner, "validation.params",
+               place);
   makeAt([&] { return learners.make(c.learner, c.learnerParams); }, c.learner,
          {{"learner.params", &c.learnerParams}}, place("learner", "name"), place);
   // The assessment and validation budgets, as LearningTask sees them.

@@ -50,9 +50,9 @@ TEST(Interrupt, ReproduceExitsWith130DuringAGpRunAndDuringTheBenchmark) {
       << output;
   EXPECT_EQ(output.find("error:"), std::string::npos) << output;
   // fig3's JIT benchmark (in-process) finishes its measurement, then the run stops.
-  EXPECT_EQ(interruptWhenExists("reproduce fig3 --scale quick --out " + dir, dir + "/fig3/jit",
-                                output),
-            130);
+  EXPECT_EQ(
+      interruptWhenExists("reproduce fig3 --scale quick --out " + dir, dir + "/fig3/jit", output),
+      130);
   EXPECT_NE(output.find("interrupted"), std::string::npos) << output;
 }
 

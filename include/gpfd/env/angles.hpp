@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "gpfd/util/lanes.hpp"
+
 namespace gpfd::env {
 
 // Wraps x into [-pi, pi] by adding or subtracting 2 pi, as Gymnasium's wrap() does (so that
@@ -16,6 +18,17 @@ inline double wrapAngle(double x) {
   while (x > hi) x -= period;
   while (x < lo) x += period;
   return x;
+}
+
+// The same on four lanes, bit for bit: one turn of the loop for every lane, and the scalar
+// function for the rare lanes that need more (or are far out, inf or NaN).
+inline lanes::Lanes4 wrapAngle(lanes::Lanes4 x) {
+  constexpr double lo = -std::numbers::pi, hi = std::numbers::pi, period = hi - lo;
+  using lanes::Lanes4;
+  const Lanes4 once = lanes::select(x > hi, x - period, lanes::select(x < lo, x + period, x));
+  const lanes::Mask4 rest = once > hi || once < lo || !(lanes::abs(x) <= 64 * period);
+  if (!lanes::anyOf(rest)) return once;
+  return lanes::patchLanes(rest, x, once, [](double v) { return wrapAngle(v); });
 }
 
 }  // namespace gpfd::env

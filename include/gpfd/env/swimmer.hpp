@@ -61,6 +61,9 @@ class Swimmer final : public Environment {
   // When on, step() and derivative() use derivativeReference (for tests and benchmarks; default
   // off).
   void setReferenceSolver(bool on) { referenceSolver_ = on; }
+  // The body constants of the fixed-size kernel when step() uses it, else nullptr (the batched
+  // swimmer, env/batch.hpp, runs the same kernel).
+  const SwimmerBody* fixedSizeBody() const { return fixedSize() ? &body_ : nullptr; }
 
  private:
   void integrateReference(double h);

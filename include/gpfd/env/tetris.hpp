@@ -81,8 +81,15 @@ class Tetris final : public Environment, public AfterstateGame {
   // Sets the board and the current piece exactly (tests, replays); the board must have the
   // configured size.
   void setBoard(const TetrisBoard& board, int piece);
-  // Every legal placement of the current piece, with its afterstate (reuses `out`'s storage).
+  // Every legal placement of the current piece, with its afterstate (reuses `out`'s storage):
+  // in bulk, from the current column heights and holes updated per placement
+  // (tetris_bulk_afterstates.cpp); the same values as afterstatesReference, which drops the piece
+  // on a copy of the board for each placement and scans the result.
   void afterstates(TetrisAfterstates& out) const;
+  void afterstatesReference(TetrisAfterstates& out) const;
+  // candidates() computes in bulk (the default) or, with false, by afterstatesReference (tests and
+  // benchmarks compare the two; the values are the same).
+  void setBulkAfterstates(bool bulk) { bulkAfterstates_ = bulk; }
   // Throws InputError unless (orientation, column) is a legal placement of the current piece.
   void checkAction(std::span<const double> action) const;
 
@@ -97,6 +104,7 @@ class Tetris final : public Environment, public AfterstateGame {
   bool gameOver_ = false;
   int steps_ = 0;
   std::vector<double> state_;
+  bool bulkAfterstates_ = true;
   // The last candidates(): placements with their rewards and game-over flags.
   TetrisAfterstates afterstates_;
   std::vector<double> rewards_;

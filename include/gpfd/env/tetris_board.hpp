@@ -39,6 +39,9 @@ class TetrisBoard {
   bool filled(int row, int col) const {
     return (cells_[static_cast<std::size_t>(row)] >> col) & 1u;
   }
+  // Row `row` (0 <= row < rows + 4) as a bit mask, bit c for column c; a full row is fullRow().
+  std::uint32_t rowBits(int row) const { return cells_[static_cast<std::size_t>(row)]; }
+  std::uint32_t fullRow() const { return full_; }
   void set(int row, int col, bool value);
   void clear();
 
@@ -66,7 +69,9 @@ class TetrisBoard {
   int rows_;
   int cols_;
   std::uint32_t full_;
-  std::array<std::uint32_t, kMaxRows + 4> cells_{};
+  // 4 hidden rows, and 4 more: a piece dropped on a board whose hidden rows are already filled
+  // (setBoard) lands above them.
+  std::array<std::uint32_t, kMaxRows + 8> cells_{};
 };
 
 }  // namespace gpfd::env

@@ -43,4 +43,11 @@ inline constexpr double kC6 = -1.13596475577881948265e-11;
 double sin(double x);
 double cos(double x);
 
+// sin x and cos x from one argument reduction: the same bits as sin(x) and cos(x).
+template <class T>
+struct SinCos {
+  T sin, cos;
+};
+SinCos<double> sinCos(double x);
+
 }  // namespace gpfd::expr::trig

@@ -34,12 +34,25 @@ void declareFeatureParams(ParamTable<Config>& table, Options options) {
       "running mean/std feature normalisation");
 }
 
+// Running mean and sum of squared deviations of raw feature rows (Welford), mergeable.
+struct FeatureMoments {
+  std::int64_t count = 0;
+  std::vector<double> mean, m2;
+
+  explicit FeatureMoments(std::size_t dim = 0) : mean(dim, 0.0), m2(dim, 0.0) {}
+  void clear();
+  void add(const double* row);
+  // Adds the rows summarised by `other` (Chan, Golub & LeVeque 1979, pairwise update).
+  void merge(const FeatureMoments& other);
+};
+
 // Not thread-safe (it keeps statistics); one per learning run.
 class FeaturePipeline {
  public:
   FeaturePipeline(const features::FeatureMap& map, const FeatureOptions& options);
 
   std::size_t stateDim() const { return map_->inputDim(); }
+  std::size_t rawDim() const { return raw_; }
   std::size_t dim() const { return raw_ + (options_.bias ? 1 : 0); }
   const FeatureOptions& options() const { return options_; }
 
@@ -48,6 +61,16 @@ class FeaturePipeline {
   // n states (n * stateDim() values) to n rows of dim() features. Returns false when a feature
   // is not finite.
   bool evaluateBatch(const double* states, std::size_t n, double* out);
+
+  // The learner's features from a row of raw features (rawDim() values, dim() of room) in place,
+  // without touching the statistics: false when a raw value is not finite; else normalised with
+  // the current snapshot, the bias appended. Policy gradient gathers each episode's moments
+  // itself and merges them in episode order, so that episodes may be played side by side.
+  bool transform(double* row) const;
+  // Adds an episode's moments to the statistics.
+  void merge(const FeatureMoments& moments);
+  const std::vector<double>& shift() const { return shift_; }
+  const std::vector<double>& scale() const { return scale_; }
 
   // Refreshes the normalisation from the statistics gathered so far and re-expresses
   // `weights` (rows x dim(), row-major, followed by anything else, which is left alone) so that
@@ -66,8 +89,7 @@ class FeaturePipeline {
   FeatureOptions options_;
   std::size_t raw_;
   std::vector<double> shift_, scale_;  // Current snapshot.
-  std::vector<double> mean_, m2_;      // Welford running statistics.
-  std::int64_t count_ = 0;
+  FeatureMoments moments_;             // Running statistics.
 };
 
 }  // namespace gpfd::rl

@@ -48,6 +48,16 @@ class LinearPolicy {
   // The greedy action: the mean (Gaussian) or the most probable choice (softmax).
   bool greedy(const double* phi, double* action);
 
+  // The pieces of sample() and greedy(), for learners that play many episodes side by side and
+  // compute the outputs (theta_i . phi, summed over j in order from 0) themselves.
+  // Gaussian: the standard deviation of output i (normalised units) and the action box mapping.
+  double stdOf(std::size_t i) const;
+  double centre(std::size_t i) const { return centre_[i]; }
+  double halfWidth(std::size_t i) const { return halfWidth_[i]; }
+  // Softmax: draws a choice from the logits z[0, outputs()) (overwritten), writes the likelihood
+  // coefficients 1[k = choice] - p_k into coefficient[0, outputs()) and returns the choice.
+  std::size_t drawChoice(double* z, Rng& rng, double* coefficient) const;
+
  private:
   bool computeOutputs(const double* phi);  // outputs_ values into out_; false if not finite.
 
@@ -58,6 +68,7 @@ class LinearPolicy {
   Eigen::VectorXd params_;
   std::vector<double> centre_, halfWidth_;  // Gaussian: action box mapping.
   std::vector<double> out_;                 // Means or logits (then probabilities).
+  std::vector<double> coefficient_;         // Softmax likelihood coefficients.
 };
 
 }  // namespace gpfd::rl

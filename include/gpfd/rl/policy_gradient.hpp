@@ -4,6 +4,8 @@
 
 #include <cstdint>
 #include <functional>
+#include <span>
+#include <vector>
 
 #include "gpfd/env/environment.hpp"
 #include "gpfd/features/feature_map.hpp"
@@ -12,6 +14,7 @@
 #include "gpfd/rl/learning_curve.hpp"
 #include "gpfd/rl/linear_policy.hpp"
 #include "gpfd/rl/rprop.hpp"
+#include "gpfd/util/params.hpp"
 #include "gpfd/util/rng.hpp"
 
 namespace gpfd::rl {
@@ -28,16 +31,34 @@ struct PolicyGradientConfig {
   RpropConfig rprop = RpropConfig::paperLarge();
   PolicyOptions policy;
   FeatureOptions features;
+  // Each episode draws its start state and actions from its own stream, seeded from the run's
+  // seed, the update and the episode. Lockstep (default): the episodes of an update run side by
+  // side through the batched environment (env/batch.hpp) where the environment has one;
+  // otherwise, or when false, one after another (the reference). Both give the same results.
+  bool lockstep = true;
   // Called with each row of the curve as soon as it is complete (progress output); may be empty.
   std::function<void(const CurvePoint&)> onPoint;
 };
 
-// Trains from zero weights. The map's inputDim() must equal env.stateDim() (InputError
-// otherwise). Row u of the curve is the batch played with the policy after u updates; the final
-// weights are those of the last row. A non-finite feature, action or return marks the curve
-// diverged and ends it; nothing throws for numerical trouble.
+// The learner's parameters ("pg": gpfd learners lists them): names, ranges, defaults, meanings.
+const ParamTable<PolicyGradientConfig>& policyGradientParams();
+
+// Trains from zero weights, drawing one value from `rng` (the run's seed). The map's inputDim()
+// must equal env.stateDim() (InputError otherwise). Row u of the curve is the batch played with the
+// policy after u updates; the final weights are those of the last row. A non-finite feature, action
+// or return marks the curve diverged and ends it; nothing throws for numerical trouble.
 LearningCurve trainPolicyGradient(env::Environment& env, const features::FeatureMap& map,
                                   const PolicyGradientConfig& config, Rng& rng);
+
+// Several independent runs, one per engine: run k gives exactly trainPolicyGradient(env, map,
+// config, rngs[k]). With config.lockstep the episodes of each update of every run still learning
+// are played side by side (runs x episodesPerUpdate lanes), which fills the lanes better than one
+// run alone: the K trials of a fitness evaluation. config.onPoint sees every run's rows, update by
+// update; a curve's wallSeconds is its share of the whole time.
+std::vector<LearningCurve> trainPolicyGradientRuns(env::Environment& env,
+                                                   const features::FeatureMap& map,
+                                                   const PolicyGradientConfig& config,
+                                                   std::span<Rng> rngs);
 
 // The gradient estimate (the one an update would use) at the given policy parameters, from
 // `episodes` sampled episodes: for tests and diagnostics. Empty when a run diverged.

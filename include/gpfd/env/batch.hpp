@@ -1,0 +1,82 @@
+// env: batched environments: many independent instances of one environment stepped in one call.
+//
+// Layout (structure of arrays): with `stride` >= the number of lanes, state variable i of lane l
+// is state[i * stride + l] and action component c of lane l is action[c * stride + l]; so a NumPy
+// array of shape (stateDim, stride), C order, is a state buffer as it is. Per lane: `elapsed`
+// counts the steps of its episode (the time limit reads it), `reward`, `terminated` and
+// `truncated` receive what Environment::step returns.
+//
+// Every lane gives, bit for bit, what the scalar environment's step() gives from the same state,
+// step count and action: both run the same dynamics templates (cartpole_dynamics.hpp, ...), on
+// four lanes at a time with AVX2 where the CPU has it (util/cpu.hpp), one lane at a time
+// otherwise. tests/env/test_batch.cpp checks it on random states and actions, both ways.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "gpfd/env/environment.hpp"
+#include "gpfd/util/rng.hpp"
+
+namespace gpfd::env {
+
+struct BatchBuffers {
+  std::size_t lanes = 0;               // Instances stepped: lanes [0, lanes).
+  std::size_t stride = 0;              // Distance between rows of `state` and `action` (>= lanes).
+  double* state = nullptr;             // In/out: stateDim() rows of `stride`.
+  const double* action = nullptr;      // In: actionComponents() rows of `stride`.
+  std::int32_t* elapsed = nullptr;     // In/out: steps of the episode so far; +1 per step.
+  double* reward = nullptr;            // Out: `lanes` values.
+  std::uint8_t* terminated = nullptr;  // Out: 1 for a terminal state of the task.
+  std::uint8_t* truncated = nullptr;   // Out: 1 when the time limit is reached.
+  // True: the lanes from `lanes` up to the next multiple of 4 (within `stride` and every per-lane
+  // array) are scratch that the AVX2 path may overwrite with garbage, which spares it copying a
+  // last partial group of lanes. False (default): nothing beyond `lanes` is touched.
+  bool scratchTail = false;
+};
+
+// How lanes are computed: Auto takes AVX2 where cpuHasAvx2(), Scalar one lane at a time (the
+// fallback, and for tests), Avx2 insists (std::invalid_argument where the CPU lacks it).
+enum class BatchIsa { Auto, Avx2, Scalar };
+
+class BatchEnvironment {
+ public:
+  virtual ~BatchEnvironment() = default;
+
+  // The scalar environment whose steps the lanes reproduce (its parameters, its reset).
+  const Environment& scalar() const { return *scalar_; }
+  std::size_t stateDim() const { return scalar_->stateDim(); }
+  std::size_t actionComponents() const { return scalar_->actionSpace().components; }
+  bool usesAvx2() const { return avx2_; }
+
+  // Starts an episode in lane `lane`: its state is drawn from `rng` exactly as scalar().reset
+  // draws it, and elapsed[lane] = 0.
+  void reset(Rng& rng, const BatchBuffers& io, std::size_t lane);
+  // One step of every lane. Throws InputError (naming the lane) for a discrete action that is not
+  // one of the choices, before any lane moves; continuous actions are clipped, NaN taken as 0.
+  virtual void step(const BatchBuffers& io) const = 0;
+
+ protected:
+  // `isa` must be resolved (Avx2 or Scalar).
+  BatchEnvironment(std::unique_ptr<Environment> scalar, BatchIsa isa)
+      : scalar_(std::move(scalar)), avx2_(isa == BatchIsa::Avx2) {}
+
+ private:
+  std::unique_ptr<Environment> scalar_;
+  bool avx2_;
+};
+
+// The batched form of `env` (a copy of its parameters), or nullptr when it has none: cart-pole
+// and Acrobot always, the swimmer when it steps with its fixed-size kernel (at most 8 segments,
+// reference solver off). Tetris has none (its learner evaluates afterstates in bulk instead).
+std::unique_ptr<BatchEnvironment> makeBatchEnvironment(const Environment& env,
+                                                       BatchIsa isa = BatchIsa::Auto);
+// The same by registry name and parameters (Python's vector environment); InputError when the
+// environment has no batched form.
+std::unique_ptr<BatchEnvironment> makeBatchEnvironment(const std::string& name,
+                                                       const Params& params,
+                                                       BatchIsa isa = BatchIsa::Auto);
+
+}  // namespace gpfd::env

@@ -1,0 +1,76 @@
+// env: batched cart-pole and Acrobot.
+#include <fmt/format.h>
+
+#include <string>
+
+#include "acrobot_dynamics.hpp"
+#include "batch_driver.hpp"
+#include "batch_factories.hpp"
+#include "cartpole_dynamics.hpp"
+#include "gpfd/util/error.hpp"
+
+namespace gpfd::env::batch {
+namespace {
+
+// Throws InputError unless every lane's discrete action is an integer in [0, choices).
+void checkChoices(const BatchBuffers& io, int choices, const std::string& env) {
+  for (std::size_t l = 0; l < io.lanes; ++l) {
+    const double a = io.action[l];
+    if (!(a >= 0.0 && a < choices && a == static_cast<int>(a))) {
+      throw InputError(fmt::format("{} discrete action must be 0..{}, got {} in lane {}", env,
+                                   choices - 1, a, l),
+                       fmt::format("{} action", env));
+    }
+  }
+}
+
+struct CartPoleKernel {
+  CartPoleConfig config;
+
+  template <class T>
+  lanes::MaskOf<T> operator()(std::array<T, 4>& s, const std::array<T, 1>& a, T& reward) const {
+    cartpole::advance(config, s, cartpole::force(config, a[0]));
+    reward = 1.0;
+    return cartpole::terminal(s);
+  }
+};
+
+struct AcrobotKernel {
+  AcrobotConfig config;
+
+  template <class T>
+  lanes::MaskOf<T> operator()(std::array<T, 4>& s, const std::array<T, 1>& a, T& reward) const {
+    acrobot::advance(config, s, acrobot::torque(config, a[0]));
+    const auto done = acrobot::terminal(s);
+    reward = lanes::select(done, T(0.0), T(-1.0));
+    return done;
+  }
+};
+
+// Cart-pole or Acrobot: four state variables, one action component, `choices` discrete actions.
+template <class Env, class Kernel, int choices>
+class ClassicBatch final : public BatchEnvironment {
+ public:
+  ClassicBatch(const Env& env, BatchIsa isa)
+      : BatchEnvironment(std::make_unique<Env>(env.config()), isa), kernel_{env.config()} {}
+
+  void step(const BatchBuffers& io) const override {
+    if (kernel_.config.discrete) checkChoices(io, choices, scalar().name());
+    stepAll<4, 1>(kernel_, io, usesAvx2(), kernel_.config.maxSteps);
+  }
+
+ private:
+  Kernel kernel_;
+};
+
+}  // namespace
+
+std::unique_ptr<BatchEnvironment> makeCartPole(const CartPole& env, BatchIsa isa) {
+  return std::make_unique<ClassicBatch<CartPole, CartPoleKernel, 2>>(env, isa);
+}
+
+std::unique_ptr<BatchEnvironment> makeAcrobot(const Acrobot& env, BatchIsa isa) {
+  return std::make_unique<ClassicBatch<Acrobot, AcrobotKernel, 3>>(env, isa);
+}
+
+}  // namespace gpfd::env::batch

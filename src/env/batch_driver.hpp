@@ -1,0 +1,96 @@
+// env: the loop shared by the batched environments: it loads the lanes of a structure-of-arrays
+// batch (env/batch.hpp) into std::array<T, S> states, runs a kernel written over the number type
+// T, and stores the results back. T is Lanes4 (four lanes at a time, compiled as AVX2; a last
+// partial group is padded with copies of its last lane) or double (one lane at a time).
+//
+// A kernel: template <class T> lanes::MaskOf<T> operator()(std::array<T, S>& state,
+//   const std::array<T, A>& action, T& reward) const, returning `terminated`.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <type_traits>
+
+#include "gpfd/env/batch.hpp"
+#include "gpfd/util/lanes.hpp"
+
+namespace gpfd::env::batch {
+
+// One group of lanes at `lane` of buffers whose rows are `stride` apart.
+template <std::size_t S, std::size_t A, class T, class Kernel>
+void stepGroup(const Kernel& kernel, double* state, const double* action, std::size_t stride,
+               double* reward, std::uint8_t* terminated) {
+  std::array<T, S> s;
+  std::array<T, A> a;
+  if constexpr (std::is_same_v<T, double>) {
+    for (std::size_t i = 0; i < S; ++i) s[i] = state[i * stride];
+    for (std::size_t c = 0; c < A; ++c) a[c] = action[c * stride];
+    *terminated = kernel(s, a, *reward) ? 1 : 0;
+    for (std::size_t i = 0; i < S; ++i) state[i * stride] = s[i];
+  } else {
+    for (std::size_t i = 0; i < S; ++i) s[i] = lanes::load(state + i * stride);
+    for (std::size_t c = 0; c < A; ++c) a[c] = lanes::load(action + c * stride);
+    T r;
+    const lanes::Mask4 done = kernel(s, a, r);
+    for (std::size_t i = 0; i < S; ++i) lanes::store(state + i * stride, s[i]);
+    lanes::store(reward, r);
+    const unsigned bits = lanes::bitsOf(done);
+    for (int j = 0; j < 4; ++j) terminated[j] = (bits >> j) & 1u;
+  }
+}
+
+template <std::size_t S, std::size_t A, class Kernel>
+void stepScalar(const Kernel& kernel, const BatchBuffers& io) {
+  for (std::size_t l = 0; l < io.lanes; ++l) {
+    stepGroup<S, A, double>(kernel, io.state + l, io.action + l, io.stride, io.reward + l,
+                            io.terminated + l);
+  }
+}
+
+template <std::size_t S, std::size_t A, class Kernel>
+GPFD_AVX2_KERNEL void stepAvx2(const Kernel& kernel, const BatchBuffers& io) {
+  std::size_t l = 0;
+  for (; l + 4 <= io.lanes; l += 4) {
+    stepGroup<S, A, lanes::Lanes4>(kernel, io.state + l, io.action + l, io.stride, io.reward + l,
+                                   io.terminated + l);
+  }
+  if (l == io.lanes) return;
+  if (io.scratchTail) {
+    stepGroup<S, A, lanes::Lanes4>(kernel, io.state + l, io.action + l, io.stride, io.reward + l,
+                                   io.terminated + l);
+    return;
+  }
+  // The last 1-3 lanes, padded to a group with copies of the last one.
+  const std::size_t rest = io.lanes - l;
+  double state[S * 4], action[A > 0 ? A * 4 : 1], reward[4];
+  std::uint8_t terminated[4];
+  for (std::size_t j = 0; j < 4; ++j) {
+    const std::size_t from = l + (j < rest ? j : rest - 1);
+    for (std::size_t i = 0; i < S; ++i) state[i * 4 + j] = io.state[i * io.stride + from];
+    for (std::size_t c = 0; c < A; ++c) action[c * 4 + j] = io.action[c * io.stride + from];
+  }
+  stepGroup<S, A, lanes::Lanes4>(kernel, state, action, 4, reward, terminated);
+  for (std::size_t j = 0; j < rest; ++j) {
+    for (std::size_t i = 0; i < S; ++i) io.state[i * io.stride + l + j] = state[i * 4 + j];
+    io.reward[l + j] = reward[j];
+    io.terminated[l + j] = terminated[j];
+  }
+}
+
+// Steps every lane with `kernel`, then counts the step and applies the time limit `maxSteps`
+// (0: none), as the scalar environments do.
+template <std::size_t S, std::size_t A, class Kernel>
+void stepAll(const Kernel& kernel, const BatchBuffers& io, bool avx2, int maxSteps) {
+  if (avx2) {
+    stepAvx2<S, A>(kernel, io);
+  } else {
+    stepScalar<S, A>(kernel, io);
+  }
+  for (std::size_t l = 0; l < io.lanes; ++l) {
+    ++io.elapsed[l];
+    io.truncated[l] = maxSteps > 0 && io.elapsed[l] >= maxSteps ? 1 : 0;
+  }
+}
+
+}  // namespace gpfd::env::batch
