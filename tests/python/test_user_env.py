@@ -1,6 +1,7 @@
 """Discovery on Gymnasium environments stepped in Python, in worker processes."""
 
 import os
+import time
 from pathlib import Path
 
 import gymnasium as gym
@@ -42,19 +43,25 @@ def test_a_gymnasium_id_evolves_for_two_generations_in_worker_processes(tmp_path
 
 
 class PidRecorder(gym.Wrapper):
-    """Pendulum that notes which process made it."""
+    """Pendulum that notes which process made it. In a worker, an instance waits (60 s at most)
+    until a second worker has made one too, so that the test does not depend on how fast the
+    workers start: one worker alone could otherwise take every task of a short generation."""
 
-    def __init__(self, directory):
+    def __init__(self, directory, parent):
         super().__init__(gym.make("Pendulum-v1"))
         Path(directory, str(os.getpid())).touch()
+        deadline = time.monotonic() + 60
+        while os.getpid() != parent and time.monotonic() < deadline:
+            if len({p.name for p in Path(directory).iterdir()} - {str(parent)}) >= 2:
+                break
+            time.sleep(0.01)
 
 
 def test_a_callable_runs_in_worker_processes(tmp_path):
     pids = tmp_path / "pids"
     pids.mkdir()
-    run = gpfd.evolve(
-        env=PidRecorder, env_kwargs={"directory": str(pids)}, **SHORT, threads=2, out=tmp_path / "r"
-    )
+    kwargs = {"directory": str(pids), "parent": os.getpid()}
+    run = gpfd.evolve(env=PidRecorder, env_kwargs=kwargs, **SHORT, threads=2, out=tmp_path / "r")
     assert run.config["env"]["name"] == "python:PidRecorder"
     workers = {int(p.name) for p in pids.iterdir()} - {os.getpid()}
     assert len(workers) == 2
