@@ -3,6 +3,9 @@
 ``gymnasium.make_vec("gpfd/CartPole-v0", num_envs=64)`` makes one (the default vectorization mode
 of gpfd's ids); every environment keyword of ``gymnasium.make`` works here too, with
 ``autoreset_mode`` (Gymnasium's AutoresetMode: next step, the default, same step, or disabled).
+Cart-pole, Acrobot and the swimmer (up to 8 segments) step as lanes of gpfd's batched environment
+(structure of arrays, AVX2); the others, and any with ``engine="loop"``, one scalar environment
+after another. Both give the same numbers bit for bit.
 Instance i behaves exactly like ``gymnasium.make`` of the same id reset with seed + i and
 auto-reset by ``SyncVectorEnv``: the same observations, rewards and flags.
 """
@@ -34,13 +37,18 @@ class GpfdVectorEnv(VectorEnv):
         num_envs: int = 1,
         autoreset_mode: str | AutoresetMode = AutoresetMode.NEXT_STEP,
         render_mode: str | None = None,
+        engine: str = "auto",
         **params: Any,
     ):
+        """engine: "auto" (batched where the environment has a batched form), "loop" (one scalar
+        environment per instance: the reference) or "batched" (gpfd.InputError where there is
+        none); ``self.engine`` says which one steps."""
         check_params(gpfd_env, params)
         if render_mode is not None:
             raise ValueError(f"{gym_id(gpfd_env)} does not render (render_mode={render_mode!r})")
         mode = AutoresetMode(autoreset_mode)
-        self._core = _core.EnvBatch(gpfd_env, params, int(num_envs), _MODES[mode])
+        self._core = _core.EnvBatch(gpfd_env, params, int(num_envs), _MODES[mode], engine)
+        self.engine = self._core.engine
         self.gpfd_name = gpfd_env
         self.state_names = tuple(self._core.state_names)
         self.params = dict(self._core.params)

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "gpfd/env/batch.hpp"
 #include "gpfd/env/tetris.hpp"
 #include "gpfd/env/tetromino.hpp"
 #include "gpfd/util/error.hpp"
@@ -31,15 +32,22 @@ Autoreset parseAutoreset(const std::string& name) {
                    "autoreset_mode");
 }
 
+Engine parseEngine(const std::string& name) {
+  if (name == "auto") return Engine::Auto;
+  if (name == "loop") return Engine::Loop;
+  if (name == "batched") return Engine::Batched;
+  throw InputError("unknown engine '" + name + "' (auto, loop, batched)", "engine");
+}
+
 EnvBatch::EnvBatch(const std::string& name, const Params& params, std::size_t n,
-                   Autoreset autoreset)
+                   Autoreset autoreset, Engine engine)
     : rngs_(n), ended_(n, 0), autoreset_(autoreset) {
   if (n == 0) throw InputError("a batch needs at least one environment", "num_envs");
-  envs_.reserve(n);
-  for (std::size_t i = 0; i < n; ++i) envs_.push_back(env::Registry::global().make(name, params));
-  dim_ = envs_.front()->stateDim();
-  space_ = envs_.front()->actionSpace();
-  if (dynamic_cast<const env::Tetris*>(envs_.front().get()) != nullptr) {
+  envs_.push_back(env::Registry::global().make(name, params));
+  const env::Environment& first = *envs_.front();
+  dim_ = first.stateDim();
+  space_ = first.actionSpace();
+  if (dynamic_cast<const env::Tetris*>(&first) != nullptr) {
     kind_ = ActionKind::Tetris;
   } else if (space_.continuous()) {
     kind_ = ActionKind::Continuous;
@@ -53,19 +61,58 @@ EnvBatch::EnvBatch(const std::string& name, const Params& params, std::size_t n,
         name);
   }
   action_.assign(space_.components, 0.0);
+  auto batch = engine == Engine::Loop ? nullptr : env::makeBatchEnvironment(first);
+  if (batch) {
+    // Every lane starts where a freshly made instance does (its state before any reset).
+    lanes_ = std::make_unique<BatchLanes>(std::move(batch), n, first.state());
+    return;
+  }
+  if (engine == Engine::Batched) throw InputError(name + " has no batched form", "engine");
+  envs_.reserve(n);
+  for (std::size_t i = 1; i < n; ++i) envs_.push_back(env::Registry::global().make(name, params));
+}
+
+const env::Environment* EnvBatch::scalarInstance(std::size_t i) const {
+  if (i >= size()) throw std::out_of_range(fmt::format("no environment {} in {}", i, size()));
+  return lanes_ ? nullptr : envs_[i].get();
+}
+
+void EnvBatch::state(std::size_t i, double* out) const {
+  if (i >= size()) throw std::out_of_range(fmt::format("no environment {} in {}", i, size()));
+  writeState(i, out);
+}
+
+void EnvBatch::setState(std::size_t i, std::span<const double> values) {
+  if (i >= size()) throw std::out_of_range(fmt::format("no environment {} in {}", i, size()));
+  if (!lanes_) {
+    envs_[i]->setState(values);
+    return;
+  }
+  envs_.front()->setState(values);  // The environment's own checks; the prototype has no episode.
+  lanes_->writeState(i, values);
 }
 
 void EnvBatch::writeState(std::size_t i, double* row) const {
+  if (lanes_) {
+    lanes_->readState(i, row);
+    return;
+  }
   const auto state = envs_[i]->state();
   std::copy(state.begin(), state.end(), row);
 }
 
+void EnvBatch::resetInstance(std::size_t i) {
+  if (lanes_) {
+    lanes_->reset(i, rngs_[i]);
+  } else {
+    envs_[i]->reset(rngs_[i]);
+  }
+  ended_[i] = 0;
+}
+
 void EnvBatch::reset(const bool* mask, double* obs) {
-  for (std::size_t i = 0; i < envs_.size(); ++i) {
-    if (mask == nullptr || mask[i]) {
-      envs_[i]->reset(rngs_[i]);
-      ended_[i] = 0;
-    }
+  for (std::size_t i = 0; i < size(); ++i) {
+    if (mask == nullptr || mask[i]) resetInstance(i);
     writeState(i, obs + i * dim_);
   }
 }
@@ -96,30 +143,36 @@ void EnvBatch::checkAction(std::size_t i, const double* action) const {
   }
 }
 
+env::StepResult EnvBatch::stepInstance(std::size_t i, const double* action) {
+  if (lanes_) return lanes_->result(i);  // Stepped with every lane before.
+  if (kind_ == ActionKind::Tetris) {
+    legalTetrisAction(*envs_[i], action, action_.data());
+    action = action_.data();
+  }
+  return envs_[i]->step(std::span<const double>(action, space_.components));
+}
+
 void EnvBatch::step(const double* actions, const BatchStep& out) {
   if (autoreset_ == Autoreset::SameStep && (out.finalObs == nullptr || out.finalMask == nullptr)) {
     throw std::logic_error("EnvBatch::step: same-step autoreset needs finalObs and finalMask");
   }
   const std::size_t components = space_.components;
-  for (std::size_t i = 0; i < envs_.size(); ++i) checkAction(i, actions + i * components);
-  for (std::size_t i = 0; i < envs_.size(); ++i) {
+  for (std::size_t i = 0; i < size(); ++i) checkAction(i, actions + i * components);
+  // The batched path steps every lane at once, those that the next-step autoreset resets below
+  // too (their new episode overwrites the step).
+  if (lanes_) lanes_->step(actions);
+  for (std::size_t i = 0; i < size(); ++i) {
     double* row = out.obs + i * dim_;
     if (out.finalMask != nullptr) out.finalMask[i] = false;
     if (autoreset_ == Autoreset::NextStep && ended_[i]) {
-      envs_[i]->reset(rngs_[i]);
-      ended_[i] = 0;
+      resetInstance(i);
       writeState(i, row);
       out.rewards[i] = 0.0;
       out.terminated[i] = false;
       out.truncated[i] = false;
       continue;
     }
-    const double* action = actions + i * components;
-    if (kind_ == ActionKind::Tetris) {
-      legalTetrisAction(*envs_[i], action, action_.data());
-      action = action_.data();
-    }
-    const env::StepResult result = envs_[i]->step(std::span<const double>(action, components));
+    const env::StepResult result = stepInstance(i, actions + i * components);
     out.rewards[i] = result.reward;
     out.terminated[i] = result.terminated;
     out.truncated[i] = result.truncated;
@@ -127,7 +180,7 @@ void EnvBatch::step(const double* actions, const BatchStep& out) {
     if (ended && autoreset_ == Autoreset::SameStep) {
       writeState(i, out.finalObs + i * dim_);
       out.finalMask[i] = true;
-      envs_[i]->reset(rngs_[i]);
+      resetInstance(i);
     }
     ended_[i] = ended ? 1 : 0;
     writeState(i, row);

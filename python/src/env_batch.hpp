@@ -1,14 +1,18 @@
 // python: N instances of one gpfd environment stepped together, each with its own random stream:
 // the engine of gpfd's Gymnasium environments (N = 1) and of their vector environment. Plain C++
-// without Python, so that batched kernels can replace the loop over scalar environments here
-// without touching the bindings.
+// without Python. Where the environment has a batched form (env/batch.hpp: cart-pole, Acrobot, the
+// swimmer on its fixed-size kernel) the instances are lanes of it, all stepped by one call;
+// otherwise (Tetris, plug-ins, Python environments) a loop steps one scalar environment per
+// instance. Both give the same observations, rewards and flags, bit for bit.
 #pragma once
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "batch_lanes.hpp"
 #include "gpfd/env/environment.hpp"
 #include "gpfd/util/rng.hpp"
 
@@ -21,6 +25,14 @@ enum class Autoreset {
   Disabled,  // Nothing: the caller resets it.
 };
 Autoreset parseAutoreset(const std::string& name);  // next_step | same_step | disabled.
+
+// How the instances are stepped.
+enum class Engine {
+  Auto,     // Batched where the environment has a batched form, else Loop.
+  Loop,     // One scalar environment per instance, stepped one after another (the reference).
+  Batched,  // Lanes of the batched environment; InputError where the environment has none.
+};
+Engine parseEngine(const std::string& name);  // auto | loop | batched.
 
 // How an action given as numbers reaches the environment.
 enum class ActionKind {
@@ -43,18 +55,29 @@ class EnvBatch {
  public:
   // InputError for an unknown environment or parameter, or an action space that cannot be driven
   // by numbers (a discrete space of several components other than Tetris).
-  EnvBatch(const std::string& name, const Params& params, std::size_t n, Autoreset autoreset);
+  EnvBatch(const std::string& name, const Params& params, std::size_t n, Autoreset autoreset,
+           Engine engine = Engine::Auto);
   EnvBatch(const EnvBatch&) = delete;
   EnvBatch& operator=(const EnvBatch&) = delete;
 
-  std::size_t size() const { return envs_.size(); }
+  std::size_t size() const { return rngs_.size(); }
+  bool batched() const { return lanes_ != nullptr; }
   std::size_t stateDim() const { return dim_; }
   std::size_t actionComponents() const { return space_.components; }
   ActionKind actionKind() const { return kind_; }
   Autoreset autoreset() const { return autoreset_; }
   const env::ActionSpace& actionSpace() const { return space_; }
-  env::Environment& env(std::size_t i) { return *envs_.at(i); }
-  const env::Environment& env(std::size_t i) const { return *envs_.at(i); }
+  // The environment's name, parameters, state names and spaces; its state is no instance's.
+  const env::Environment& prototype() const { return *envs_.front(); }
+  // Instance i's scalar environment on the loop path; nullptr on the batched path, whose
+  // instances live in the batch's buffers. std::out_of_range for i >= size().
+  const env::Environment* scalarInstance(std::size_t i) const;
+
+  // Instance i's state variables (stateDim() values). std::out_of_range for i >= size().
+  void state(std::size_t i, double* out) const;
+  // Sets instance i's state variables exactly, with the environment's own checks (InputError),
+  // and restarts its episode's step count (the time limit), as Environment::setState does.
+  void setState(std::size_t i, std::span<const double> values);
 
   // Reseeds instance i's stream; its next reset starts from Rng(seed), like
   // `gpfd simulate --seed seed`.
@@ -68,9 +91,13 @@ class EnvBatch {
 
  private:
   void checkAction(std::size_t i, const double* action) const;
+  void resetInstance(std::size_t i);
+  env::StepResult stepInstance(std::size_t i, const double* action);
   void writeState(std::size_t i, double* row) const;
 
+  // The loop path: one environment per instance. The batched path: the prototype alone.
   std::vector<std::unique_ptr<env::Environment>> envs_;
+  std::unique_ptr<BatchLanes> lanes_;  // The batched path's instances, or null.
   std::vector<Rng> rngs_;
   std::vector<char> ended_;  // NextStep: the episode ended at the previous step.
   env::ActionSpace space_;

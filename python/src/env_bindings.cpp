@@ -47,7 +47,7 @@ std::vector<double> oneAction(const EnvBatch& batch, nb::handle action) {
   if (array.size() != components) {
     throw InputError(fmt::format("an action has {} component{}, got {} values", components,
                                  components == 1 ? "" : "s", array.size()),
-                     batch.env(0).name() + " action");
+                     batch.prototype().name() + " action");
   }
   std::copy(array.data(), array.data() + components, values.begin());
   return values;
@@ -93,8 +93,10 @@ nb::tuple stepAll(EnvBatch& batch, const ReadArray& actions) {
 }
 
 nb::dict afterstates(const EnvBatch& batch, std::size_t i) {
-  const auto* tetris = dynamic_cast<const env::Tetris*>(&batch.env(i));
-  if (tetris == nullptr) throw InputError("afterstates exist for Tetris only", batch.env(i).name());
+  const auto* tetris = dynamic_cast<const env::Tetris*>(batch.scalarInstance(i));
+  if (tetris == nullptr) {
+    throw InputError("afterstates exist for Tetris only", batch.prototype().name());
+  }
   env::TetrisAfterstates all;
   tetris->afterstates(all);
   const std::size_t k = all.placements.size(), dim = all.featureDim;
@@ -124,17 +126,23 @@ void bindEnvironments(nb::module_& m) {
       .def(
           "__init__",
           [](EnvBatch* self, const std::string& name, const nb::dict& params, std::size_t n,
-             const std::string& autoreset) {
-            new (self) EnvBatch(name, paramsFromDict(params, name), n, parseAutoreset(autoreset));
+             const std::string& autoreset, const std::string& engine) {
+            new (self) EnvBatch(name, paramsFromDict(params, name), n, parseAutoreset(autoreset),
+                                parseEngine(engine));
           },
           nb::arg("name"), nb::arg("params") = nb::dict(), nb::arg("num_envs") = 1,
-          nb::arg("autoreset") = "next_step")
+          nb::arg("autoreset") = "next_step", nb::arg("engine") = "auto",
+          "engine: auto (batched where the environment has a batched form), loop (one scalar "
+          "environment per instance, the reference) or batched (InputError where there is none).")
       .def_prop_ro("num_envs", &EnvBatch::size)
-      .def_prop_ro("name", [](const EnvBatch& b) { return b.env(0).name(); })
       .def_prop_ro(
-          "params", [](const EnvBatch& b) { return b.env(0).params(); },
+          "engine", [](const EnvBatch& b) { return b.batched() ? "batched" : "loop"; },
+          "How the instances step: batched (one call of the batched environment) or loop.")
+      .def_prop_ro("name", [](const EnvBatch& b) { return b.prototype().name(); })
+      .def_prop_ro(
+          "params", [](const EnvBatch& b) { return b.prototype().params(); },
           "Every parameter with its value, defaults filled in.")
-      .def_prop_ro("state_names", [](const EnvBatch& b) { return b.env(0).stateNames(); })
+      .def_prop_ro("state_names", [](const EnvBatch& b) { return b.prototype().stateNames(); })
       .def_prop_ro("action_kind", [](const EnvBatch& b) { return kindName(b.actionKind()); })
       .def_prop_ro("action_components", &EnvBatch::actionComponents)
       .def_prop_ro("action_choices", [](const EnvBatch& b) { return b.actionSpace().choices; })
@@ -143,7 +151,7 @@ void bindEnvironments(nb::module_& m) {
       .def_prop_ro("action_names", [](const EnvBatch& b) { return b.actionSpace().names; })
       .def_prop_ro("tetris_columns",
                    [](const EnvBatch& b) -> std::optional<int> {
-                     const auto* t = dynamic_cast<const env::Tetris*>(&b.env(0));
+                     const auto* t = dynamic_cast<const env::Tetris*>(&b.prototype());
                      return t ? std::optional<int>(t->config().cols) : std::nullopt;
                    })
       .def("seed", &EnvBatch::seed, nb::arg("index"), nb::arg("seed"))
@@ -178,21 +186,21 @@ void bindEnvironments(nb::module_& m) {
           "state",
           [](const EnvBatch& b, std::size_t i) {
             auto obs = newArray<double>({b.stateDim()});
-            const auto state = b.env(i).state();
-            std::copy(state.begin(), state.end(), obs.data());
+            b.state(i, obs.data());
             return obs;
           },
           nb::arg("index") = 0)
       .def(
           "set_state",
           [](EnvBatch& b, std::size_t i, const ReadArray& state) {
-            b.env(i).setState(std::span<const double>(state.data(), state.size()));
+            b.setState(i, std::span<const double>(state.data(), state.size()));
           },
           nb::arg("index"), nb::arg("state"))
       .def(
           "action_mask",
           [](const EnvBatch& b, std::size_t i) {
-            const auto mask = tetrisActionMask(b.env(i));
+            const env::Environment* instance = b.scalarInstance(i);
+            const auto mask = tetrisActionMask(instance ? *instance : b.prototype());
             auto out = newArray<bool>({4, mask.size() / 4});
             for (std::size_t j = 0; j < mask.size(); ++j) out.data()[j] = mask[j] != 0;
             return out;

@@ -1,0 +1,193 @@
+"""gpfd's vector environment on its batched engine (one call of env/batch.hpp per step) against its
+loop engine (one scalar environment per instance, the reference): the same observations, rewards,
+flags, final observations and states, bit for bit, in every autoreset mode, over episodes that end
+by termination and by the time limit, with states set in the middle of episodes."""
+
+import gymnasium as gym
+import numpy as np
+import pytest
+from gymnasium.vector import AutoresetMode, SyncVectorEnv
+
+import gpfd
+from gpfd.vector import GpfdVectorEnv
+
+MODES = [AutoresetMode.NEXT_STEP, AutoresetMode.SAME_STEP, AutoresetMode.DISABLED]
+
+
+def near_terminal(name, rng, dim):
+    """A state from which a few steps end the episode: cart-pole at the edge of the track, Acrobot
+    with its tip near the goal height; the swimmer (which never terminates) anywhere."""
+    if name == "cartpole":
+        return np.array([rng.choice([-2.39, 2.39]), rng.normal(), rng.uniform(-0.2, 0.2), 0.0])
+    if name == "acrobot":
+        return np.array([np.pi + rng.uniform(-1.1, 1.1), rng.uniform(-0.4, 0.4), 0.0, 0.0])
+    return rng.uniform(-2.0, 2.0, size=dim)
+
+
+def random_actions(env, rng, n):
+    """Random legal discrete choices; continuous ones beyond the bounds (clipped) and some NaN
+    (taken as 0)."""
+    space = env.single_action_space
+    if isinstance(space, gym.spaces.Discrete):
+        return rng.integers(0, space.n, size=n)
+    actions = rng.uniform(-1.5, 1.5, size=(n, *space.shape)) * space.high
+    actions[rng.random(actions.shape) < 0.02] = np.nan
+    return actions
+
+
+def assert_same(got, want, what):
+    assert got.dtype == want.dtype, what
+    assert np.array_equal(got, want, equal_nan=True), what
+    # Bit for bit: the same doubles, -0.0 and the NaN payloads included.
+    assert got.tobytes() == want.tobytes(), what
+
+
+CASES = [
+    ("cartpole", {"max_steps": 40}),
+    ("cartpole", {"actions": "discrete", "max_steps": 30, "integrator": "rk4"}),
+    ("acrobot", {"max_steps": 25}),
+    ("acrobot", {"actions": "discrete", "max_steps": 30, "dynamics": "nips"}),
+    ("swimmer", {"segments": 3, "horizon": 20}),
+    ("swimmer", {"segments": 5, "horizon": 15}),
+]
+
+
+@pytest.mark.parametrize("mode", MODES, ids=lambda m: m.value)
+@pytest.mark.parametrize("name,params", CASES, ids=lambda c: str(c))
+def test_batched_engine_equals_the_loop_engine(name, params, mode):
+    n, steps = 7, 240  # 7: a partial group of AVX2 lanes.
+    batched = GpfdVectorEnv(name, num_envs=n, autoreset_mode=mode, engine="batched", **params)
+    loop = GpfdVectorEnv(name, num_envs=n, autoreset_mode=mode, engine="loop", **params)
+    assert (batched.engine, loop.engine) == ("batched", "loop")
+    dim = batched.single_observation_space.shape[0]
+    rng = np.random.default_rng(17)
+    a, _ = batched.reset(seed=5)
+    b, _ = loop.reset(seed=5)
+    assert_same(a, b, "reset")
+    terminated = truncated = 0
+    for t in range(steps):
+        actions = random_actions(batched, rng, n)
+        got = batched.step(actions)
+        want = loop.step(actions)
+        for i, what in enumerate(("obs", "rewards", "terminated", "truncated")):
+            assert_same(got[i], want[i], f"{what} at step {t}")
+        assert got[4].keys() == want[4].keys()
+        if "_final_obs" in got[4]:  # Same-step autoreset; the rows outside the mask are unset.
+            mask = got[4]["_final_obs"]
+            assert_same(mask, want[4]["_final_obs"], f"final mask at step {t}")
+            assert_same(got[4]["final_obs"][mask], want[4]["final_obs"][mask], f"final at {t}")
+        terminated += int(got[2].sum())
+        truncated += int(got[3].sum())
+        ended = got[2] | got[3]
+        if mode == AutoresetMode.DISABLED and ended.any():
+            a, _ = batched.reset(options={"reset_mask": ended})
+            b, _ = loop.reset(options={"reset_mask": ended})
+            assert_same(a, b, f"reset_mask at step {t}")
+        if t % 9 == 4:  # A state set mid-episode restarts the time limit's step count too.
+            i = int(rng.integers(n))
+            state = near_terminal(name, rng, dim)
+            batched._core.set_state(i, state)
+            loop._core.set_state(i, state)
+        assert_same(batched.states, loop.states, f"states at step {t}")
+    assert truncated > 0
+    if name != "swimmer":
+        assert terminated > 0
+
+
+def assert_equals_sync_vector_env(env_id, n, params, mode, steps, seed):
+    """gpfd's vector environment against N of gpfd's single Gymnasium environments, as Gymnasium
+    itself vectorises them, under the same random actions; returns gpfd's vector environment."""
+    ours = gym.make_vec(env_id, num_envs=n, autoreset_mode=mode, **params)
+    theirs = SyncVectorEnv(
+        [lambda: gym.make(env_id, **params) for _ in range(n)], autoreset_mode=mode
+    )
+    assert_same(ours.reset(seed=seed)[0], theirs.reset(seed=seed)[0], "reset")
+    theirs.action_space.seed(seed)
+    ended = 0
+    for t in range(steps):
+        action = theirs.action_space.sample()
+        got, want = ours.step(action), theirs.step(action)
+        for i in range(4):
+            assert_same(np.asarray(got[i]), np.asarray(want[i]), f"output {i} at step {t}")
+        if mode == AutoresetMode.SAME_STEP and "final_obs" in got[4]:
+            mask = got[4]["_final_obs"]
+            assert np.array_equal(mask, want[4]["_final_obs"])
+            assert_same(got[4]["final_obs"][mask], np.stack(want[4]["final_obs"][mask]), "final")
+        done = got[2] | got[3]
+        ended += int(done.sum())
+        if mode == AutoresetMode.DISABLED and done.any():
+            ours.reset(options={"reset_mask": done})
+            theirs.reset(options={"reset_mask": done})
+    assert ended > 0
+    return ours.unwrapped
+
+
+@pytest.mark.parametrize("mode", MODES, ids=lambda m: m.value)
+def test_batched_engine_equals_single_environments_under_sync_vector_env(mode):
+    params = {"actions": "discrete", "max_steps": 25}
+    ours = assert_equals_sync_vector_env("gpfd/CartPole-v0", 5, params, mode, 150, 3)
+    assert ours.engine == "batched"
+
+
+def test_time_limit_counts_from_reset_and_from_set_state():
+    env = GpfdVectorEnv("swimmer", num_envs=3, engine="batched", horizon=4)
+    env.reset(seed=0)
+    for _ in range(2):
+        env.step(np.zeros((3, 2)))
+    env._core.set_state(1, np.zeros(8))
+    flags = [env.step(np.zeros((3, 2)))[3].tolist() for _ in range(4)]
+    assert flags == [
+        [False, False, False],
+        [True, False, True],
+        [False, False, False],  # 0 and 2 start again (next-step autoreset).
+        [False, True, False],
+    ]
+
+
+def test_the_batched_engine_serves_what_has_a_batched_form():
+    def engine(name, **params):
+        return GpfdVectorEnv(name, num_envs=2, **params).engine
+
+    assert engine("cartpole") == engine("acrobot") == "batched"
+    assert engine("swimmer", segments=3) == engine("swimmer", segments=8) == "batched"
+    assert engine("swimmer", segments=9) == "loop"  # Beyond the fixed-size kernel.
+    assert engine("tetris") == "loop"
+    assert gym.make_vec("gpfd/Swimmer-v0", num_envs=2, engine="loop").unwrapped.engine == "loop"
+    with pytest.raises(gpfd.InputError, match="tetris has no batched form"):
+        GpfdVectorEnv("tetris", num_envs=2, engine="batched")
+    with pytest.raises(gpfd.InputError, match="unknown engine 'fast'"):
+        GpfdVectorEnv("cartpole", num_envs=2, engine="fast")
+
+
+def test_set_state_and_errors_on_the_batched_engine():
+    env = GpfdVectorEnv("cartpole", num_envs=6, engine="batched", actions="discrete")
+    env.reset(seed=1)
+    env._core.set_state(4, np.array([0.1, 0.2, 0.3, 0.4]))
+    assert env._core.state(4).tolist() == [0.1, 0.2, 0.3, 0.4]
+    assert env.states[4].tolist() == [0.1, 0.2, 0.3, 0.4]
+    with pytest.raises(gpfd.InputError, match="cartpole state must be finite"):
+        env._core.set_state(2, np.array([0.0, np.nan, 0.0, 0.0]))
+    with pytest.raises(gpfd.InputError, match="cartpole takes 4 state variables, got 2"):
+        env._core.set_state(2, np.array([0.0, 0.0]))
+    with pytest.raises(IndexError):
+        env._core.state(6)
+    with pytest.raises(IndexError):
+        env._core.set_state(6, np.zeros(4))
+    before = env.states
+    with pytest.raises(gpfd.InputError, match="action of environment 3"):
+        env.step(np.array([0, 1, 0, 2, 0, 1]))
+    assert np.array_equal(env.states, before)  # Nothing moved.
+    with pytest.raises(gpfd.InputError, match="afterstates exist for Tetris only"):
+        env._core.afterstates(0)
+    with pytest.raises(gpfd.InputError, match="not a Tetris environment"):
+        env._core.action_mask(0)
+
+
+@pytest.mark.parametrize("mode", MODES, ids=lambda m: m.value)
+def test_tetris_steps_on_the_loop_engine(mode):
+    params = {"rows": 8, "cols": 6}
+    ours = assert_equals_sync_vector_env("gpfd/Tetris-v0", 4, params, mode, 120, 2)
+    assert ours.engine == "loop"
+    single = gym.make("gpfd/Tetris-v0", **params).unwrapped
+    single.reset(seed=1)
+    assert len(single.afterstates()["actions"]) > 0
