@@ -67,7 +67,7 @@ class EnvBatch {
   ActionKind actionKind() const { return kind_; }
   Autoreset autoreset() const { return autoreset_; }
   const env::ActionSpace& actionSpace() const { return space_; }
-  // The environment's name, parameters, state names and spaces; its state is no instance's.
+  // The environment's name, parameters, state names and spaces (instances' states: state()).
   const env::Environment& prototype() const { return *envs_.front(); }
   // Instance i's scalar environment on the loop path; nullptr on the batched path, whose
   // instances live in the batch's buffers. std::out_of_range for i >= size().
