@@ -89,6 +89,18 @@ class PolicyGradientLearner final : public Learner {
     return trainPolicyGradient(env, map, config, rng);
   }
 
+  // With lockstep, the runs' episodes of each update are played side by side on one environment
+  // (trainPolicyGradientRuns); without, one run after another (the reference).
+  std::vector<LearningCurve> trainRuns(const EnvironmentMaker& makeEnv,
+                                       const features::FeatureMap& map, std::span<Rng> rngs,
+                                       const RunPointCallback& onPoint) const override {
+    if (!config_.lockstep) return Learner::trainRuns(makeEnv, map, rngs, onPoint);
+    PolicyGradientConfig config = config_;
+    config.onRunPoint = onPoint;
+    const auto env = makeEnv();
+    return trainPolicyGradientRuns(*env, map, config, rngs);
+  }
+
   Evaluation evaluate(env::Environment& env, const features::FeatureMap& map,
                       const LinearWeights& weights, int episodes, Rng& rng) const override {
     const auto e = evaluatePolicy(env, map, weights, config_, episodes, true, rng);
