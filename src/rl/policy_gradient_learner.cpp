@@ -1,4 +1,5 @@
 // The registry entry of policy gradient with Rprop: its parameters and how it trains.
+#include "gpfd/env/batch.hpp"
 #include "gpfd/rl/policy_gradient.hpp"
 
 namespace gpfd::rl {
@@ -89,15 +90,19 @@ class PolicyGradientLearner final : public Learner {
     return trainPolicyGradient(env, map, config, rng);
   }
 
-  // With lockstep, the runs' episodes of each update are played side by side on one environment
-  // (trainPolicyGradientRuns); without, one run after another (the reference).
+  // With lockstep on an environment that has a batched form, the runs' episodes of each update
+  // are played side by side (trainPolicyGradientRuns on one environment, whose reset() alone
+  // sets up an episode); otherwise one run after another, each on its own environment (the
+  // reference, and what any other environment, e.g. a plug-in's, was promised).
   std::vector<LearningCurve> trainRuns(const EnvironmentMaker& makeEnv,
                                        const features::FeatureMap& map, std::span<Rng> rngs,
                                        const RunPointCallback& onPoint) const override {
-    if (!config_.lockstep) return Learner::trainRuns(makeEnv, map, rngs, onPoint);
+    const auto env = makeEnv();
+    if (!config_.lockstep || !env::makeBatchEnvironment(*env)) {
+      return Learner::trainRuns(makeEnv, map, rngs, onPoint);
+    }
     PolicyGradientConfig config = config_;
     config.onRunPoint = onPoint;
-    const auto env = makeEnv();
     return trainPolicyGradientRuns(*env, map, config, rngs);
   }
 
