@@ -6,6 +6,8 @@
 //   PG trials (cart-pole, Acrobot, 3- and 5-segment swimmer; the configs' short trials, with
 //   features of the kind GP discovers): reference = episodes one after another (lockstep=false),
 //   fast = lockstep episodes through the batched environment.
+//   GP fitness (the trials of one evaluation through run::trialFitness): reference = the trials
+//   one after another, fast = played together.
 //   Tetris lambda-PI (12 x 8, the 18 variables, Bertsekas-Ioffe start): reference = afterstates
 //   placement by placement, fast = afterstates in bulk.
 #include <benchmark/benchmark.h>
@@ -23,6 +25,7 @@
 #include "gpfd/rl/game_afterstates.hpp"
 #include "gpfd/rl/lambda_policy_iteration.hpp"
 #include "gpfd/rl/policy_gradient.hpp"
+#include "gpfd/run/learning_task.hpp"
 
 namespace {
 
@@ -169,6 +172,57 @@ BENCHMARK(BM_PgFitnessCartPole)->Unit(benchmark::kMillisecond)->MinTime(3.0);
 BENCHMARK(BM_PgFitnessAcrobot)->Unit(benchmark::kMillisecond)->MinTime(3.0);
 BENCHMARK(BM_PgFitnessSwimmer3)->Unit(benchmark::kMillisecond)->MinTime(3.0);
 BENCHMARK(BM_PgFitnessSwimmer5)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+
+// A GP fitness evaluation as `gpfd evolve` runs it (run::trialFitness on a LearningTask with the
+// trial's settings, lockstep on): reference = its trials one after another, each on a fresh
+// environment (LearningTask::train, as before the trials were played together); fast =
+// trialFitness, which trains them together (LearningTask::trainRuns). Unit: one evaluation.
+void trialFitness(benchmark::State& state, const PgTrial& trial, int trials) {
+  run::ExperimentConfig config;
+  config.env = trial.env;
+  config.envParams = trial.envParams;
+  config.learner = "pg";
+  config.learnerParams = {{"updates", std::to_string(trial.updates)},
+                          {"episodes", std::to_string(trial.episodes)}};
+  if (trial.std > 0) config.learnerParams["std"] = std::to_string(trial.std);
+  config.trials = trials;
+  config.dropRedundant = false;
+  const run::LearningTask task(config, run::LearningTask::Budget::Trial);
+  const expr::Genome genome =
+      expr::parseFeaturesFile(trial.features, "bench", task.stateNames(), trial.env).genome;
+  Path slow, quick;
+  std::uint64_t seed = 0;
+  double sum = 0.0;
+  for (auto _ : state) {
+    ++seed;
+    slow.time([&] {
+      const auto map = task.featureMap(genome);
+      Rng rng(seed);
+      const std::uint64_t base = rng();
+      for (int t = 0; t < trials; ++t) {
+        Rng trialRng(deriveSeed(base, t));
+        sum += task.score(task.train(*map, trialRng));
+      }
+      return 1;
+    });
+    quick.time([&] {
+      Rng rng(seed);
+      sum += run::trialFitness(task, genome, rng);
+      return 1;
+    });
+  }
+  benchmark::DoNotOptimize(sum);
+  report(state, slow, quick, "evaluation");
+}
+
+void BM_TrialFitnessCartPole(benchmark::State& state) { trialFitness(state, kCartPole, 5); }
+void BM_TrialFitnessAcrobot(benchmark::State& state) { trialFitness(state, kAcrobot, 5); }
+void BM_TrialFitnessSwimmer3(benchmark::State& state) { trialFitness(state, kSwimmer3, 4); }
+void BM_TrialFitnessSwimmer5(benchmark::State& state) { trialFitness(state, kSwimmer5, 4); }
+BENCHMARK(BM_TrialFitnessCartPole)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+BENCHMARK(BM_TrialFitnessAcrobot)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+BENCHMARK(BM_TrialFitnessSwimmer3)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+BENCHMARK(BM_TrialFitnessSwimmer5)->Unit(benchmark::kMillisecond)->MinTime(3.0);
 
 // Lambda-PI on 12 x 8 with the paper's 18 state variables: 2 iterations of 10 games from the
 // Bertsekas-Ioffe start (short games, so that a run takes milliseconds). Unit: a decision (one

@@ -95,7 +95,7 @@ void exportWeights(const LinearPolicy& policy, const FeaturePipeline& features,
 }
 
 // After a batch: the run's row of the curve, then its update (or its end).
-void finishBatch(RunState& run, int update, const PolicyGradientConfig& config) {
+void finishBatch(RunState& run, std::size_t index, int update, const PolicyGradientConfig& config) {
   LearningCurve& curve = run.curve;
   if (curve.diverged) {
     run.learning = false;
@@ -105,6 +105,7 @@ void finishBatch(RunState& run, int update, const PolicyGradientConfig& config) 
                           run.sum / static_cast<double>(config.episodesPerUpdate)});
   exportWeights(run.policy, run.features, curve.weights);
   if (config.onPoint) config.onPoint(curve.points.back());
+  if (config.onRunPoint) config.onRunPoint(index, curve.points.back());
   if (update == config.updates ||
       (config.maxTotalSteps > 0 && curve.steps >= config.maxTotalSteps)) {
     run.learning = false;
@@ -173,8 +174,8 @@ std::vector<LearningCurve> trainPolicyGradientRuns(env::Environment& env,
                     run.estimator.addEpisode(learners.records.eligibility[i], outcome.discounted);
                     if (config.features.normalise) run.features.merge(learners.records.moments[i]);
                   });
-    for (auto& run : learners.runs) {
-      if (run->learning) finishBatch(*run, update, config);
+    for (std::size_t k = 0; k < learners.runs.size(); ++k) {
+      if (learners.runs[k]->learning) finishBatch(*learners.runs[k], k, update, config);
     }
   }
   const double seconds =

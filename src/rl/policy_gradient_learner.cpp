@@ -1,4 +1,5 @@
 // The registry entry of policy gradient with Rprop: its parameters and how it trains.
+#include "gpfd/env/batch.hpp"
 #include "gpfd/rl/policy_gradient.hpp"
 
 namespace gpfd::rl {
@@ -87,6 +88,22 @@ class PolicyGradientLearner final : public Learner {
     PolicyGradientConfig config = config_;
     config.onPoint = onPoint;
     return trainPolicyGradient(env, map, config, rng);
+  }
+
+  // With lockstep on an environment that has a batched form, the runs' episodes of each update
+  // are played side by side (trainPolicyGradientRuns on one environment, whose reset() alone
+  // sets up an episode); otherwise one run after another, each on its own environment (the
+  // reference, and what any other environment, e.g. a plug-in's, was promised).
+  std::vector<LearningCurve> trainRuns(const EnvironmentMaker& makeEnv,
+                                       const features::FeatureMap& map, std::span<Rng> rngs,
+                                       const RunPointCallback& onPoint) const override {
+    const auto env = makeEnv();
+    if (!config_.lockstep || !env::makeBatchEnvironment(*env)) {
+      return Learner::trainRuns(makeEnv, map, rngs, onPoint);
+    }
+    PolicyGradientConfig config = config_;
+    config.onRunPoint = onPoint;
+    return trainPolicyGradientRuns(*env, map, config, rngs);
   }
 
   Evaluation evaluate(env::Environment& env, const features::FeatureMap& map,

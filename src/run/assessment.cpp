@@ -1,14 +1,13 @@
 #include "gpfd/run/assessment.hpp"
 
 #include <fmt/format.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <cmath>
 #include <sstream>
 
 #include "gpfd/io/gnuplot.hpp"
 #include "gpfd/rl/fourier_basis.hpp"
+#include "gpfd/run/run_grid.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
 
@@ -53,17 +52,14 @@ AssessmentResult runAssessment(const LearningTask& task, const std::vector<Featu
                                std::atomic<long>* progress) {
   AssessmentResult result;
   for (const auto& s : sets) result.names.push_back(s.name);
-  result.curves.assign(sets.size(), std::vector<rl::LearningCurve>(runs));
-  const std::size_t jobs = sets.size() * static_cast<std::size_t>(runs);
-  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-  arena.execute([&] {
-    tbb::parallel_for(std::size_t{0}, jobs, [&](std::size_t job) {
-      const std::size_t s = job / runs, r = job % runs;
-      Rng rng(deriveSeed(seed, s, r));
-      result.curves[s][r] = task.train(*sets[s].map, rng);
-      if (progress) progress->fetch_add(1);
-    });
-  });
+  std::vector<const features::FeatureMap*> maps;
+  for (const auto& s : sets) maps.push_back(s.map.get());
+  result.curves = trainRunGrid(
+      task, maps, static_cast<std::size_t>(runs),
+      [seed](std::size_t s, std::size_t r) { return deriveSeed(seed, s, r); }, threads,
+      [progress](std::size_t n) {
+        if (progress) progress->fetch_add(static_cast<long>(n));
+      });
   return result;
 }
 

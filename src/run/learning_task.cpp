@@ -48,6 +48,12 @@ rl::LearningCurve LearningTask::train(const features::FeatureMap& map, Rng& rng)
   return learner_->train(*environment, map, rng);
 }
 
+std::vector<rl::LearningCurve> LearningTask::trainRuns(const features::FeatureMap& map,
+                                                       std::span<Rng> rngs) const {
+  return learner_->trainRuns(
+      [this] { return env::Registry::global().make(config_.env, config_.envParams); }, map, rngs);
+}
+
 double LearningTask::score(const rl::LearningCurve& curve) const {
   if (curve.diverged || curve.points.empty()) return kWorst;
   const auto& points = curve.points;
@@ -103,10 +109,11 @@ std::shared_ptr<const features::FeatureMap> genomeFeatureMap(const expr::Genome&
 double trialFitness(const LearningTask& task, const expr::Genome& genome, Rng& rng) {
   const auto map = task.featureMap(genome);
   const std::uint64_t base = rng();
+  std::vector<Rng> trialRngs;
+  for (int t = 0; t < task.config().trials; ++t) trialRngs.emplace_back(deriveSeed(base, t));
   double sum = 0.0;
-  for (int t = 0; t < task.config().trials; ++t) {
-    Rng trialRng(deriveSeed(base, t));
-    const double s = task.score(task.train(*map, trialRng));
+  for (const auto& curve : task.trainRuns(*map, trialRngs)) {
+    const double s = task.score(curve);
     if (!std::isfinite(s)) return kWorst;
     sum += s;
   }

@@ -1,14 +1,13 @@
 #include "gpfd/run/validation.hpp"
 
 #include <fmt/format.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
 #include "gpfd/expr/print.hpp"
+#include "gpfd/run/run_grid.hpp"
 
 namespace gpfd::run {
 namespace {
@@ -85,16 +84,15 @@ Validator::Validator(const ExperimentConfig& config, int threads, std::uint64_t 
 std::vector<std::vector<double>> Validator::score(
     const std::vector<std::shared_ptr<const features::FeatureMap>>& maps) const {
   const auto& config = task_.config();
-  const auto seeds = static_cast<std::size_t>(config.validation.seeds);
-  std::vector<std::vector<double>> scores(maps.size(), std::vector<double>(seeds));
-  tbb::task_arena arena(threads_ > 0 ? threads_ : tbb::task_arena::automatic);
-  arena.execute([&] {
-    tbb::parallel_for(std::size_t{0}, maps.size() * seeds, [&](std::size_t job) {
-      const std::size_t s = job / seeds, m = job % seeds;
-      Rng rng(deriveSeed(config.seed, stream_, m));
-      scores[s][m] = task_.score(task_.train(*maps[s], rng));
-    });
-  });
+  std::vector<const features::FeatureMap*> sets;
+  for (const auto& map : maps) sets.push_back(map.get());
+  const auto curves = trainRunGrid(
+      task_, sets, static_cast<std::size_t>(config.validation.seeds),
+      [&](std::size_t, std::size_t m) { return deriveSeed(config.seed, stream_, m); }, threads_);
+  std::vector<std::vector<double>> scores(maps.size());
+  for (std::size_t s = 0; s < maps.size(); ++s) {
+    for (const auto& curve : curves[s]) scores[s].push_back(task_.score(curve));
+  }
   return scores;
 }
 

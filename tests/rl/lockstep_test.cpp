@@ -4,7 +4,6 @@
 // Gaussian and softmax policies, normalisation, a learned std, caps and a run that diverges.
 #include <gtest/gtest.h>
 
-#include <bit>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -15,34 +14,13 @@
 #include "gpfd/jit/compiled_feature_map.hpp"
 #include "gpfd/rl/policy_gradient.hpp"
 #include "gpfd/run/learning_task.hpp"
+#include "same_curves.hpp"
 
 namespace gpfd::rl {
 namespace {
 
-bool sameBits(double a, double b) {
-  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
-}
-
-void expectSameCurves(const LearningCurve& a, const LearningCurve& b) {
-  ASSERT_EQ(a.points.size(), b.points.size());
-  for (std::size_t i = 0; i < a.points.size(); ++i) {
-    EXPECT_EQ(a.points[i].update, b.points[i].update);
-    EXPECT_EQ(a.points[i].episodes, b.points[i].episodes);
-    EXPECT_EQ(a.points[i].steps, b.points[i].steps) << "row " << i;
-    EXPECT_TRUE(sameBits(a.points[i].meanReturn, b.points[i].meanReturn))
-        << "row " << i << ": " << a.points[i].meanReturn << " vs " << b.points[i].meanReturn;
-  }
-  EXPECT_EQ(a.episodes, b.episodes);
-  EXPECT_EQ(a.steps, b.steps);
-  EXPECT_EQ(a.diverged, b.diverged);
-  EXPECT_EQ(a.divergedReason, b.divergedReason);
-  ASSERT_EQ(a.weights.values.size(), b.weights.values.size());
-  for (std::size_t i = 0; i < a.weights.values.size(); ++i) {
-    EXPECT_TRUE(sameBits(a.weights.values[i], b.weights.values[i])) << "weight " << i;
-  }
-  EXPECT_EQ(a.weights.shift, b.weights.shift);
-  EXPECT_EQ(a.weights.scale, b.weights.scale);
-}
+using testing::expectSameCurves;
+using testing::sameBits;
 
 struct Setting {
   std::string name;

@@ -9,6 +9,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,10 @@ namespace gpfd::rl {
 
 // Called with each row of a learning curve as soon as it is complete (progress output).
 using PointCallback = std::function<void(const CurvePoint&)>;
+// The same for several runs: the index of the run and the row.
+using RunPointCallback = std::function<void(std::size_t run, const CurvePoint&)>;
+// Makes a fresh instance of the environment a run learns on.
+using EnvironmentMaker = std::function<std::unique_ptr<env::Environment>()>;
 
 // Greedy play with trained weights.
 struct Evaluation {
@@ -41,6 +46,15 @@ class Learner {
   // diverged and never throws; bad settings throw InputError.
   virtual LearningCurve train(env::Environment& env, const features::FeatureMap& map, Rng& rng,
                               const PointCallback& onPoint = {}) const = 0;
+  // Several independent runs from scratch, run k drawing from rngs[k] (the trials of a fitness
+  // evaluation): curve k is exactly what train(*makeEnv(), map, rngs[k]) gives, bit for bit
+  // (wallSeconds aside), and rngs[k] is left as that call leaves it. The default trains them one
+  // after another, each on its own environment; a learner may override it to play them together
+  // (pg with lockstep). onPoint sees each run's rows in order, those of different runs possibly
+  // interleaved.
+  virtual std::vector<LearningCurve> trainRuns(const EnvironmentMaker& makeEnv,
+                                               const features::FeatureMap& map, std::span<Rng> rngs,
+                                               const RunPointCallback& onPoint = {}) const;
   // Plays `episodes` episodes greedily with `weights` as train() returned them.
   virtual Evaluation evaluate(env::Environment& env, const features::FeatureMap& map,
                               const LinearWeights& weights, int episodes, Rng& rng) const = 0;

@@ -38,6 +38,8 @@ struct PolicyGradientConfig {
   bool lockstep = true;
   // Called with each row of the curve as soon as it is complete (progress output); may be empty.
   std::function<void(const CurvePoint&)> onPoint;
+  // The same with the run's index (trainPolicyGradientRuns; 0 for a single run); may be empty.
+  RunPointCallback onRunPoint;
 };
 
 // The learner's parameters ("pg": gpfd learners lists them): names, ranges, defaults, meanings.
@@ -54,7 +56,8 @@ LearningCurve trainPolicyGradient(env::Environment& env, const features::Feature
 // config, rngs[k]). With config.lockstep the episodes of each update of every run still learning
 // are played side by side (runs x episodesPerUpdate lanes), which fills the lanes better than one
 // run alone: the K trials of a fitness evaluation. config.onPoint sees every run's rows, update by
-// update; a curve's wallSeconds is its share of the whole time.
+// update (config.onRunPoint with the run's index); a curve's wallSeconds is its share of the whole
+// time.
 std::vector<LearningCurve> trainPolicyGradientRuns(env::Environment& env,
                                                    const features::FeatureMap& map,
                                                    const PolicyGradientConfig& config,

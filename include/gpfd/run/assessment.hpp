@@ -36,7 +36,8 @@ struct AssessmentResult {
 };
 
 // Run r of set s is seeded deriveSeed(seed, s, r): independent runs, identical for any number of
-// threads. `progress` (optional) counts finished runs.
+// threads; a few runs of a set are played together (trainRunGrid). `progress` (optional) counts
+// finished runs.
 AssessmentResult runAssessment(const LearningTask& task, const std::vector<FeatureSet>& sets,
                                int runs, std::uint64_t seed, int threads,
                                std::atomic<long>* progress = nullptr);

@@ -4,6 +4,7 @@
 
 #include <map>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,10 @@ class LearningTask {
   // One learning run on a fresh environment, seeing states through `map` (inputDim() ==
   // stateDim()). Thread-safe: shares nothing between calls.
   rl::LearningCurve train(const features::FeatureMap& map, Rng& rng) const;
+  // Independent learning runs of one map, run k drawing from rngs[k], played together where the
+  // learner can (rl::Learner::trainRuns): curve k is exactly train(map, rngs[k]). Thread-safe.
+  std::vector<rl::LearningCurve> trainRuns(const features::FeatureMap& map,
+                                           std::span<Rng> rngs) const;
   // The trial's performance under the configured measure; -inf when the run diverged or is empty.
   double score(const rl::LearningCurve& curve) const;
 
@@ -59,8 +64,8 @@ std::shared_ptr<const features::FeatureMap> genomeFeatureMap(const expr::Genome&
                                                              bool withOriginal);
 
 // The fitness of GP: the mean score of config.trials short trials of task.featureMap(genome),
-// trial t seeded from deriveSeed(rng(), t). Any non-finite or diverged trial makes the fitness
-// -inf (worst).
+// trial t seeded from deriveSeed(rng(), t), trained together (task.trainRuns). Any non-finite or
+// diverged trial makes the fitness -inf (worst).
 double trialFitness(const LearningTask& task, const expr::Genome& genome, Rng& rng);
 
 }  // namespace gpfd::run

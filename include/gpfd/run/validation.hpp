@@ -48,7 +48,8 @@ std::vector<HallOfFameEntry> hallOfFame(const std::map<std::string, gp::FitnessR
 
 // Trains feature sets on validation seeds: seed m is deriveSeed(config.seed, stream, m) for
 // every set, so sets are compared on paired trials. A trial is one learning run with the
-// validation budget (config.validation.seeds of them per set), scored as GP scores a trial.
+// validation budget (config.validation.seeds of them per set), scored as GP scores a trial; a
+// few seeds of a set are trained together (trainRunGrid), which changes no score.
 class Validator {
  public:
   static constexpr std::uint64_t kValidationStream = 2;
