@@ -117,9 +117,7 @@ void TomlReader::read(const std::string& section, const std::string& key, int& o
 void TomlReader::read(const std::string& section, const std::string& key, std::uint64_t& out) {
   const toml::node* node = find(section, key);
   if (node == nullptr) return;
-  if (!node->is_integer() || *node->value<std::int64_t>() < 0) {
-    fail(section, key, "must be a non-negative integer");
-  }
+  if (!node->is_integer()) fail(section, key, "must be an integer");
   out = static_cast<std::uint64_t>(*node->value<std::int64_t>());
 }
 

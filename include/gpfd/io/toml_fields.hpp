@@ -24,6 +24,8 @@ class TomlReader {
             const std::vector<std::string>& choices = {});
   void read(const std::string& section, const std::string& key, bool& out);
   void read(const std::string& section, const std::string& key, int& out, long lo, long hi);
+  // A 64-bit unsigned value (a seed). TOML integers are signed 64-bit, so values of 2^63 and above
+  // are written as their two's complement (a negative integer) and read back the same way.
   void read(const std::string& section, const std::string& key, std::uint64_t& out);
   void read(const std::string& section, const std::string& key, double& out, double lo, double hi);
   void read(const std::string& section, const std::string& key, std::vector<double>& out);
