@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "../run/cli_helpers.hpp"
+#include "gpfd/jit/x86_compiler.hpp"
 
 namespace {
 
@@ -130,6 +131,8 @@ TEST(CliTable, BadInputIsOneErrorLineWithExitTwo) {
   };
   const std::regex format(R"(error: [^\n]+ \([^\n]+\)\n)");
   for (const auto& bad : table) {
+    // A build without the JIT refuses `bench jit` before reading its arguments.
+    if (!gpfd::jit::jitAvailable() && bad.args.starts_with("bench jit")) continue;
     const auto r = runGpfd(bad.args);
     EXPECT_EQ(r.status, 2) << bad.args << "\n" << r.output;
     EXPECT_TRUE(std::regex_match(r.output, format)) << bad.args << "\n" << r.output;

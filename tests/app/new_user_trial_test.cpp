@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "../run/cli_helpers.hpp"
+#include "gpfd/jit/x86_compiler.hpp"
 
 namespace gpfd::testing {
 namespace {
@@ -85,6 +86,7 @@ TEST(NewUser, MoreThreadsThanCoresAreClampedWithANote) {
 }
 
 TEST(NewUser, BenchJitSummarisesAnyDepthRange) {
+  if (!gpfd::jit::jitAvailable()) GTEST_SKIP() << "needs native code: the JIT benchmark";
   const auto dir = freshDir("bench-depths");
   const auto r =
       runGpfd("bench jit --depths 2-4 --calls 2000 --runs 1 --memory-cycles 0 --out " + dir);
