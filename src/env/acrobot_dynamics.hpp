@@ -12,14 +12,14 @@
 
 namespace gpfd::env::acrobot {
 
-// Constants of BENCHMARKS.md (Gymnasium Acrobot-v1).
+// Constants of Gymnasium Acrobot-v1 (docs/benchmarks.md).
 inline constexpr double kM1 = 1.0, kM2 = 1.0, kL1 = 1.0, kLc1 = 0.5, kLc2 = 0.5, kI1 = 1.0,
                         kI2 = 1.0;
 inline constexpr double kG = 9.8;
 inline constexpr double kPi = std::numbers::pi;
 inline constexpr double kMaxVel1 = 4 * kPi, kMaxVel2 = 9 * kPi;
 
-// d/dt (th1, th2, dth1, dth2) under torque `tau` (BENCHMARKS.md equations).
+// d/dt (th1, th2, dth1, dth2) under torque `tau` (the equations of docs/benchmarks.md).
 template <class T>
 std::array<T, 4> derivative(AcrobotConfig::Dynamics dynamics, const std::array<T, 4>& s, T tau) {
   const T th1 = s[0], th2 = s[1], dth1 = s[2], dth2 = s[3];

@@ -10,7 +10,7 @@
 
 namespace gpfd::env::cartpole {
 
-// Constants of BENCHMARKS.md (Gymnasium CartPole-v1).
+// Constants of Gymnasium CartPole-v1 (docs/benchmarks.md).
 inline constexpr double kMassCart = 1.0, kMassPole = 0.1, kTotalMass = kMassCart + kMassPole;
 inline constexpr double kHalfLength = 0.5, kPoleMassLength = kMassPole * kHalfLength;
 inline constexpr double kXThreshold = 2.4;
