@@ -2,6 +2,9 @@
 // 130 after the step that was running, and a rerun continues.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <unistd.h>
+
+#include <string>
 
 #include "cli_helpers.hpp"
 #include "gpfd/jit/x86_compiler.hpp"
@@ -12,7 +15,10 @@ namespace {
 // Starts `args` in its own process group, waits for `file`, sends SIGINT to the whole group as a
 // terminal's Ctrl-C does, and returns the exit code.
 int interruptWhenExists(const std::string& args, const std::string& file, std::string& output) {
-  const std::string log = ::testing::TempDir() + "/interrupt.log";
+  // One log per call and per test process: ctest runs the tests of this file in parallel.
+  static int calls = 0;
+  const std::string log = ::testing::TempDir() + "/interrupt-" + std::to_string(getpid()) + "-" +
+                          std::to_string(++calls) + ".log";
   const pid_t pid = fork();
   if (pid == 0) {
     setpgid(0, 0);
