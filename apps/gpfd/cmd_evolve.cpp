@@ -71,24 +71,26 @@ void printOutcome(const run::RunOutcome& o, const std::string& dir, const std::s
         label, o.gpBest, dir);
   } else if (o.originalWon) {
     fmt::print(
-        "{}no discovered feature set beat the original variables on validation (original {}); "
+        "{}no discovered feature set beat the original variables on {} (original {}); "
         "{}/best.features holds the original variables\n",
-        label, meanSe(o.original), dir);
+        label, o.confirmed ? "validation and confirmation" : "validation", meanSe(o.original), dir);
   } else {
     fmt::print(
-        "{}validated: {} vs original {} on {} paired trials (difference {:.4g}, p = {:.3g}); "
+        "{}{}: {} vs original {} on {} paired fresh trials (difference {:.4g}, p = {:.3g}); "
         "features in {}/best.features\n",
-        label, meanSe(o.winner), meanSe(o.original), o.winner.n, o.vsOriginal.meanDifference,
-        o.vsOriginal.p, dir);
+        label, o.confirmed ? "confirmed" : "validated", meanSe(o.winner), meanSe(o.original),
+        o.winner.n, o.vsOriginal.meanDifference, o.vsOriginal.p, dir);
   }
 }
 
 // A set of runs in a few lines: what each returned, and how often discovery beat the original.
 void printSetSummary(const std::vector<run::RunOutcome>& outcomes, const std::string& dir) {
   int discovered = 0, significant = 0;
+  bool confirmed = false;
   std::vector<double> differences;
   for (const auto& o : outcomes) {
     if (!o.validated) continue;
+    confirmed = confirmed || o.confirmed;
     differences.push_back(o.vsOriginal.meanDifference);
     if (o.originalWon) continue;
     ++discovered;
@@ -101,10 +103,11 @@ void printSetSummary(const std::vector<run::RunOutcome>& outcomes, const std::st
   }
   const auto test = run::wilcoxonSignedRank(differences);
   fmt::print(
-      "{} runs: a discovered set beat the original variables on validation in {} ({} with "
+      "{} runs: a discovered set beat the original variables on {} in {} ({} with "
       "p < 0.05); median difference {:.4g} (Wilcoxon signed-rank over runs p = {:.3g}); per-run "
       "results in {}/runs.csv\n",
-      outcomes.size(), discovered, significant, test.median, test.p, dir);
+      outcomes.size(), confirmed ? "confirmation" : "validation", discovered, significant,
+      test.median, test.p, dir);
 }
 
 // Runs (or continues) one discovery run with progress output; 0 when finished, 130 when

@@ -22,6 +22,17 @@ double number(const json& j) {
   return j.is_null() ? -std::numeric_limits<double>::infinity() : j.get<double>();
 }
 
+json numbers(const std::vector<double>& values) {
+  json array = json::array();
+  for (const double v : values) array.push_back(number(v));
+  return array;
+}
+std::vector<double> numbersFrom(const json& array) {
+  std::vector<double> values;
+  for (const auto& v : array) values.push_back(number(v));
+  return values;
+}
+
 // A genome as its features' S-expressions with variables as x[i]: exact and compact.
 json genomeJson(const expr::Genome& g) {
   json features = json::array();
@@ -53,14 +64,12 @@ std::string formatCheckpoint(const Checkpoint& c) {
   }
   json validated = json::array();
   for (const auto& set : c.validation.sets) {
-    json scores = json::array();
-    for (const double v : set.scores) scores.push_back(number(v));
     validated.push_back(
         {{"key", set.key},
          {"generation", set.generation},
          {"gp_fitness", std::isnan(set.gpFitness) ? json("nan") : number(set.gpFitness)},
          {"gp_trials", set.gpTrials},
-         {"scores", scores}});
+         {"scores", numbers(set.scores)}});
   }
   json history = json::array();
   for (const auto& r : c.history) {
@@ -91,6 +100,10 @@ std::string formatCheckpoint(const Checkpoint& c) {
             {"history", history},
             {"validation",
              {{"sets", validated},
+              {"confirmation",
+               {{"key", c.validation.confirmation.key},
+                {"winner", numbers(c.validation.confirmation.winner)},
+                {"original", numbers(c.validation.confirmation.original)}}},
               {"final_generation", c.validation.finalGeneration},
               {"seconds", c.validation.seconds}}}};
   return j.dump(1) + "\n";
@@ -134,8 +147,14 @@ Checkpoint parseCheckpoint(const std::string& text, const std::string& source) {
       set.gpFitness =
           fitness.is_string() ? std::numeric_limits<double>::quiet_NaN() : number(fitness);
       set.gpTrials = v.at("gp_trials").get<int>();
-      for (const auto& score : v.at("scores")) set.scores.push_back(number(score));
+      set.scores = numbersFrom(v.at("scores"));
       c.validation.sets.push_back(std::move(set));
+    }
+    if (validation.contains("confirmation")) {  // Checkpoints written before confirmation lack it.
+      const auto& confirmation = validation.at("confirmation");
+      c.validation.confirmation.key = confirmation.at("key").get<std::string>();
+      c.validation.confirmation.winner = numbersFrom(confirmation.at("winner"));
+      c.validation.confirmation.original = numbersFrom(confirmation.at("original"));
     }
     c.validation.finalGeneration = validation.at("final_generation").get<int>();
     c.validation.seconds = validation.at("seconds").get<double>();

@@ -148,18 +148,45 @@ struct Discovery::State {
       validation.sets.push_back(std::move(fresh[i]));
     }
     validation.seconds += secondsSince(start);
-    writeFileAtomically(path("validation.csv"),
-                        formatValidationCsv(validation.sets, task.stateNames()));
+    writeFileAtomically(
+        path("validation.csv"),
+        formatValidationCsv(validation.sets, returnedIndex(validation, dim()), task.stateNames()));
   }
 
-  // The final choice: best.features becomes the validation winner; front.csv the size front.
+  std::size_t dim() const { return task.stateDim(); }
+
+  // Trains the validation winner (unless it is the original variables) and the original
+  // variables on the confirmation seeds.
+  void confirmWinner() {
+    validation.confirmation = {};
+    if (config.validation.confirmSeeds == 0) return;
+    const auto start = std::chrono::steady_clock::now();
+    const auto& winner = validation.sets[chooseWinner(validation.sets, dim())];
+    std::vector<const expr::Genome*> genomes{nullptr};
+    if (!winner.isOriginal()) genomes.push_back(&winner.genome);
+    auto scores = Validator::confirmation(config, threads).score(genomes);
+    validation.confirmation.original = std::move(scores[0]);
+    if (!winner.isOriginal()) {
+      validation.confirmation.key = winner.key;
+      validation.confirmation.winner = std::move(scores[1]);
+    }
+    validation.seconds += secondsSince(start);
+    writeFileAtomically(path("confirmation.csv"),
+                        formatConfirmationCsv(validation, task.stateNames()));
+  }
+
+  // The final choice: best.features becomes what validation and confirmation return; front.csv
+  // the size front.
   void chooseValidated() {
     validateHallOfFame();
-    const std::size_t winner = chooseWinner(validation.sets, task.stateDim());
-    const auto& set = validation.sets[winner];
-    writeFeaturesFile(path("best.features"),
-                      winnerFeaturesFile(validation.sets, winner,
-                                         expr::simplify(task.prepared(set.genome)), task));
+    confirmWinner();
+    const auto& set = validation.sets[returnedIndex(validation, dim())];
+    writeFileAtomically(
+        path("validation.csv"),
+        formatValidationCsv(validation.sets, returnedIndex(validation, dim()), task.stateNames()));
+    writeFeaturesFile(
+        path("best.features"),
+        returnedFeaturesFile(validation, expr::simplify(task.prepared(set.genome)), task));
     writeFileAtomically(path("front.csv"), formatFrontCsv(validation.sets, task.stateNames()));
     validation.finalGeneration = evolution.generation();
     writeCheckpoint();

@@ -17,7 +17,11 @@ namespace {
 
 const std::vector<std::string> kMeasures{"mean", "final", "last_fraction"};
 
+}  // namespace
+
 std::string measureName(TrialMeasure m) { return kMeasures[static_cast<int>(m)]; }
+
+namespace {
 
 // Visits every field once, for reading and for writing: V is io::TomlReader or Writer below.
 template <typename V>
@@ -64,6 +68,9 @@ void visit(V& v, ExperimentConfig& c) {
   v.integer("validation", "seeds", c.validation.seeds, 2, 100000);
   v.integer("validation", "every", c.validation.every, 0, 1000000);
   v.params("validation.params", c.validation.params);
+  v.integer("validation", "confirm_seeds", c.validation.confirmSeeds, 0, 100000);
+  v.params("validation.confirm_params", c.validation.confirmParams);
+  v.measure("validation", "confirm_measure", c.validation.confirmMeasure);
   v.integer("assess", "runs", c.assessRuns, 1, 100000);
   v.params("assess.params", c.assessParams);
 }
@@ -193,17 +200,26 @@ void validateAt(const ExperimentConfig& c, const Place& place) {
   requireKnown(c.assessParams, learnerParamNames, "learner " + c.learner, "assess.params", place);
   requireKnown(c.validation.params, learnerParamNames, "learner " + c.learner, "validation.params",
                place);
+  requireKnown(c.validation.confirmParams, learnerParamNames, "learner " + c.learner,
+               "validation.confirm_params", place);
   makeAt([&] { return learners.make(c.learner, c.learnerParams); }, c.learner,
          {{"learner.params", &c.learnerParams}}, place("learner", "name"), place);
-  // The assessment and validation budgets, as LearningTask sees them.
-  for (const auto* overrides : {&c.assessParams, &c.validation.params}) {
+  // The assessment, validation and confirmation budgets, as LearningTask sees them.
+  const std::vector<std::pair<const Params*, const char*>> budgets{
+      {&c.assessParams, "assess.params"},
+      {&c.validation.params, "validation.params"},
+      {&c.validation.confirmParams, "validation.confirm_params"}};
+  for (const auto& [overrides, section] : budgets) {
     Params merged = c.learnerParams;
     for (const auto& [key, value] : *overrides) merged[key] = value;
-    const char* section = overrides == &c.assessParams ? "assess.params" : "validation.params";
     makeAt([&] { return learners.make(c.learner, merged); }, c.learner,
            {{section, overrides}, {"learner.params", &c.learnerParams}}, place("learner", "name"),
            place);
   }
+  require(c.validation.confirmSeeds != 1,
+          "validation.confirm_seeds must be 0 (no confirmation) or at least 2 (a standard error "
+          "needs two trials)",
+          place("validation", "confirm_seeds"));
   require(c.maxTrials == 0 || c.maxTrials >= c.trials,
           "fitness.max_trials must be 0 (no re-evaluation) or at least fitness.trials (" +
               std::to_string(c.trials) + ")",

@@ -15,12 +15,16 @@ constexpr std::uint64_t kStateSampleStream = 0x5a3;
 }  // namespace
 
 LearningTask::LearningTask(const ExperimentConfig& config, Budget budget)
-    : config_(config), learnerParams_(config.learnerParams) {
-  if (budget == Budget::Assessment) {
-    for (const auto& [k, v] : config.assessParams) learnerParams_[k] = v;
+    : config_(config), measure_(config.measure), learnerParams_(config.learnerParams) {
+  const std::map<std::string, std::string>* overrides = nullptr;
+  if (budget == Budget::Assessment) overrides = &config.assessParams;
+  if (budget == Budget::Validation) overrides = &config.validation.params;
+  if (budget == Budget::Confirmation) {
+    overrides = &config.validation.confirmParams;
+    measure_ = config.validation.confirmMeasure;
   }
-  if (budget == Budget::Validation) {
-    for (const auto& [k, v] : config.validation.params) learnerParams_[k] = v;
+  if (overrides != nullptr) {
+    for (const auto& [k, v] : *overrides) learnerParams_[k] = v;
   }
   const auto environment = env::Registry::global().make(config_.env, config_.envParams);
   stateNames_ = environment->stateNames();
@@ -58,7 +62,7 @@ double LearningTask::score(const rl::LearningCurve& curve) const {
   if (curve.diverged || curve.points.empty()) return kWorst;
   const auto& points = curve.points;
   std::size_t first = 0;
-  switch (config_.measure) {
+  switch (measure_) {
     case TrialMeasure::Final:
       first = points.size() - 1;
       break;

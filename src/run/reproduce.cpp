@@ -102,9 +102,12 @@ class Experiment {
       }
       return summarize(scores);
     }
-    ExperimentConfig remeasured = config;
-    remeasured.validation.seeds = kRemeasureSeeds;
-    const Validator validator(remeasured, o_.threads, Validator::kRemeasureStream);
+    // The trial behind the reported score: the confirmation's where the run confirms.
+    const bool confirmed = config.validation.candidates > 0 && config.validation.confirmSeeds > 0;
+    const Validator validator(
+        config, o_.threads,
+        confirmed ? LearningTask::Budget::Confirmation : LearningTask::Budget::Validation,
+        kRemeasureSeeds, Validator::kRemeasureStream);
     scores = validator.score(std::vector<std::shared_ptr<const features::FeatureMap>>{
         genomeFeatureMap(returned, validator.task().stateDim(), config.withOriginal)})[0];
     std::string csv = "score\n";
@@ -200,8 +203,14 @@ std::vector<std::vector<std::string>> settingsTable(const ExperimentConfig& c) {
            (c.gp.commonRandomNumbers ? ", common seeds per generation" : "")},
       {"validation",
        c.validation.candidates > 0
-           ? fmt::format("hall of fame of {} + the original variables, {} seeds ({})",
-                         c.validation.candidates, c.validation.seeds, joined(c.validation.params))
+           ? fmt::format(
+                 "hall of fame of {} + the original variables, {} seeds ({}){}",
+                 c.validation.candidates, c.validation.seeds, joined(c.validation.params),
+                 c.validation.confirmSeeds > 0
+                     ? fmt::format("; winner confirmed on {} fresh seeds ({}; {})",
+                                   c.validation.confirmSeeds, joined(c.validation.confirmParams),
+                                   measureName(c.validation.confirmMeasure))
+                     : std::string())
            : "none (the GP's best is returned)"},
       {"GP", fmt::format("population {}, {} generations, crossover {}, elitism {}, "
                          "tournament {}, size penalty {} per node",
@@ -337,10 +346,12 @@ io::Report benchmark(Experiment& e, const ExperimentConfig& config, const std::s
   }
   r.paragraph(fmt::format(
       "Each GP run's returned features (`best.features`): the GP's own fitness of its best set "
-      "(the maximum of noisy estimates, so biased upwards), the validation score that chose the "
-      "set (or kept the original variables), the same trial re-measured on {} fresh seeds, and "
-      "the long assessment against the original variables (final {:.4g} ± {:.2g}); a run that "
-      "returned the original variables is the original variables (no change).",
+      "(the maximum of noisy estimates, so biased upwards), the validated score `best.features` "
+      "reports (where the config confirms the validation winner: its score on fresh "
+      "confirmation seeds, which the choice among the candidates never saw; else the validation "
+      "score that chose it), the same trial re-measured on {} other fresh seeds, and the long "
+      "assessment against the original variables (final {:.4g} ± {:.2g}); a run that returned "
+      "the original variables is the original variables (no change).",
       kRemeasureSeeds, originalFinal.mean, originalFinal.halfWidth));
   r.table(runTable(assessed, originalFinal));
   r.paragraph(fmt::format(

@@ -41,31 +41,35 @@ RunOutcome outcomeOf(const Discovery& discovery, int run) {
     return o;
   }
   o.validated = true;
-  const std::size_t winner = chooseWinner(sets, dim);
-  const auto& original = sets[originalIndex(sets)];
-  o.originalWon = sets[winner].isOriginal();
-  o.winner = sets[winner].summary();
-  o.original = original.summary();
-  o.vsOriginal = comparePaired(sets[winner].scores, original.scores);
-  o.features = o.originalWon ? dim : sets[winner].genome.featureCount();
-  o.size = sets[winner].size(dim);
+  const std::size_t returned = returnedIndex(discovery.validation(), dim);
+  const auto reported = reportedScores(discovery.validation(), dim);
+  o.originalWon = sets[returned].isOriginal();
+  o.confirmed = reported.confirmed;
+  o.winner = summarize(*reported.returned);
+  o.original = summarize(*reported.original);
+  o.vsOriginal = comparePaired(*reported.returned, *reported.original);
+  o.features = o.originalWon ? dim : sets[returned].genome.featureCount();
+  o.size = sets[returned].size(dim);
   return o;
 }
 
 std::string formatRunsCsv(const std::vector<RunOutcome>& outcomes) {
   std::string csv =
       "run,seed,gp_best,returned,features,size,validated_mean,validated_se,original_mean,"
-      "original_se,difference,p_vs_original\n";
+      "original_se,difference,p_vs_original,scored_by\n";
   const auto se = [](const Summary& s) {
     return s.n > 1 ? s.stddev / std::sqrt(static_cast<double>(s.n)) : 0.0;
   };
   for (const auto& o : outcomes) {
-    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", o.run, o.seed, o.gpBest,
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", o.run, o.seed, o.gpBest,
                        !o.validated    ? "gp-best"
                        : o.originalWon ? "original"
                                        : "discovered",
                        o.features, o.size, o.winner.mean, se(o.winner), o.original.mean,
-                       se(o.original), o.vsOriginal.meanDifference, o.vsOriginal.p);
+                       se(o.original), o.vsOriginal.meanDifference, o.vsOriginal.p,
+                       !o.validated  ? "gp"
+                       : o.confirmed ? "confirmation"
+                                     : "validation");
   }
   return csv;
 }

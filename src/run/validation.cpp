@@ -78,8 +78,22 @@ std::vector<HallOfFameEntry> hallOfFame(const std::map<std::string, gp::FitnessR
   return all;
 }
 
+bool Confirmation::held() const {
+  return !key.empty() && comparePaired(winner, original).meanDifference > 0.0;
+}
+
 Validator::Validator(const ExperimentConfig& config, int threads, std::uint64_t stream)
-    : task_(config, LearningTask::Budget::Validation), threads_(threads), stream_(stream) {}
+    : Validator(config, threads, LearningTask::Budget::Validation, config.validation.seeds,
+                stream) {}
+
+Validator::Validator(const ExperimentConfig& config, int threads, LearningTask::Budget budget,
+                     int seeds, std::uint64_t stream)
+    : task_(config, budget), threads_(threads), seeds_(seeds), stream_(stream) {}
+
+Validator Validator::confirmation(const ExperimentConfig& config, int threads) {
+  return {config, threads, LearningTask::Budget::Confirmation, config.validation.confirmSeeds,
+          kConfirmationStream};
+}
 
 std::vector<std::vector<double>> Validator::score(
     const std::vector<std::shared_ptr<const features::FeatureMap>>& maps) const {
@@ -87,7 +101,7 @@ std::vector<std::vector<double>> Validator::score(
   std::vector<const features::FeatureMap*> sets;
   for (const auto& map : maps) sets.push_back(map.get());
   const auto curves = trainRunGrid(
-      task_, sets, static_cast<std::size_t>(config.validation.seeds),
+      task_, sets, static_cast<std::size_t>(seeds_),
       [&](std::size_t, std::size_t m) { return deriveSeed(config.seed, stream_, m); }, threads_);
   std::vector<std::vector<double>> scores(maps.size());
   for (std::size_t s = 0; s < maps.size(); ++s) {
@@ -118,11 +132,40 @@ std::size_t chooseWinner(const std::vector<ValidatedSet>& sets, std::size_t stat
   return ranking(sets, stateDim).front();
 }
 
-std::string formatValidationCsv(const std::vector<ValidatedSet>& sets,
+namespace {
+
+// Whether the state's confirmation is of its current validation winner (a run extended after it
+// finished validates more sets, and its old confirmation no longer applies until redone).
+bool confirmsWinner(const ValidationState& state, std::size_t stateDim) {
+  return state.confirmation.done() &&
+         state.confirmation.key == state.sets[chooseWinner(state.sets, stateDim)].key;
+}
+
+}  // namespace
+
+std::size_t returnedIndex(const ValidationState& state, std::size_t stateDim) {
+  const std::size_t winner = chooseWinner(state.sets, stateDim);
+  if (confirmsWinner(state, stateDim) && !state.sets[winner].isOriginal() &&
+      !state.confirmation.held()) {
+    return originalIndex(state.sets);
+  }
+  return winner;
+}
+
+ReportedScores reportedScores(const ValidationState& state, std::size_t stateDim) {
+  const auto& confirmation = state.confirmation;
+  if (!confirmsWinner(state, stateDim)) {
+    return {&state.sets[returnedIndex(state, stateDim)].scores,
+            &state.sets[originalIndex(state.sets)].scores, false};
+  }
+  return {confirmation.held() ? &confirmation.winner : &confirmation.original,
+          &confirmation.original, true};
+}
+
+std::string formatValidationCsv(const std::vector<ValidatedSet>& sets, std::size_t returned,
                                 const std::vector<std::string>& stateNames) {
   const std::size_t dim = stateNames.size();
   const auto& original = sets[originalIndex(sets)];
-  const std::size_t winner = chooseWinner(sets, dim);
   std::string csv =
       "rank,set,generation,size,features,gp_fitness,gp_trials,mean,se,sd,seeds,"
       "difference_vs_original,p_vs_original,selected,expressions\n";
@@ -135,9 +178,33 @@ std::string formatValidationCsv(const std::vector<ValidatedSet>& sets,
                        s.isOriginal() ? "original" : "hall-of-fame", s.generation, s.size(dim),
                        s.isOriginal() ? dim : s.genome.featureCount(), s.gpFitness, s.gpTrials,
                        summary.mean, standardError(summary), summary.stddev, summary.n,
-                       paired.meanDifference, s.isOriginal() ? 1.0 : paired.p, i == winner ? 1 : 0,
-                       quoted(featuresText(s, stateNames)));
+                       paired.meanDifference, s.isOriginal() ? 1.0 : paired.p,
+                       i == returned ? 1 : 0, quoted(featuresText(s, stateNames)));
   }
+  return csv;
+}
+
+std::string formatConfirmationCsv(const ValidationState& state,
+                                  const std::vector<std::string>& stateNames) {
+  const auto& confirmation = state.confirmation;
+  std::string csv =
+      "set,mean,se,sd,seeds,difference_vs_original,p_vs_original,returned,expressions\n";
+  if (!confirmation.done()) return csv;
+  const bool held = confirmation.held();
+  const auto row = [&](const ValidatedSet& set, const std::vector<double>& scores, bool returned) {
+    const Summary summary = summarize(scores);
+    const auto paired = comparePaired(scores, confirmation.original);
+    csv += fmt::format(
+        "{},{},{},{},{},{},{},{},{}\n", set.isOriginal() ? "original" : "validation-winner",
+        summary.mean, standardError(summary), summary.stddev, summary.n, paired.meanDifference,
+        set.isOriginal() ? 1.0 : paired.p, returned ? 1 : 0, quoted(featuresText(set, stateNames)));
+  };
+  if (!confirmation.key.empty()) {
+    for (const auto& set : state.sets) {
+      if (set.key == confirmation.key) row(set, confirmation.winner, held);
+    }
+  }
+  row(state.sets[originalIndex(state.sets)], confirmation.original, !held);
   return csv;
 }
 
@@ -202,31 +269,46 @@ std::string formatMeanSe(const Summary& summary) {
                      summary.n);
 }
 
-expr::FeaturesFile winnerFeaturesFile(const std::vector<ValidatedSet>& sets, std::size_t winner,
-                                      const expr::Genome& prepared, const LearningTask& task) {
+expr::FeaturesFile returnedFeaturesFile(const ValidationState& state, const expr::Genome& prepared,
+                                        const LearningTask& task) {
   const auto& config = task.config();
-  const auto& set = sets[winner];
-  const auto& original = sets[originalIndex(sets)];
+  const std::size_t dim = task.stateDim();
+  const auto& set = state.sets[returnedIndex(state, dim)];
+  const auto reported = reportedScores(state, dim);
   expr::FeaturesFile file;
   file.env = config.env;
   file.variables = task.stateNames();
-  file.genome = set.isOriginal() ? identityGenome(task.stateDim()) : prepared;
+  file.genome = set.isOriginal() ? identityGenome(dim) : prepared;
   file.meta["experiment"] = config.name;
   file.meta["seed"] = std::to_string(config.seed);
-  file.meta["validated"] = formatMeanSe(set.summary());
-  file.meta["original"] = formatMeanSe(original.summary());
+  file.meta["validated"] = formatMeanSe(summarize(*reported.returned));
+  file.meta["validated_by"] =
+      reported.confirmed
+          ? fmt::format("confirmation on {} fresh seeds (validation.confirm_params, measure {})",
+                        reported.returned->size(), measureName(config.validation.confirmMeasure))
+          : "validation (the best of the candidates: biased upwards)";
+  if (reported.confirmed) file.meta["selection"] = formatMeanSe(set.summary());
+  file.meta["original"] = formatMeanSe(summarize(*reported.original));
+  const auto paired = comparePaired(*reported.returned, *reported.original);
   if (set.isOriginal()) {
+    const bool confirmationFailed = state.confirmation.done() && !state.confirmation.key.empty();
     file.meta["verdict"] =
-        "no discovered feature set beat the original variables on validation; these are the "
-        "original variables";
+        confirmationFailed
+            ? fmt::format(
+                  "the validation winner did not beat the original variables on the confirmation "
+                  "seeds (difference {:.4g}); these are the original variables",
+                  comparePaired(state.confirmation.winner, state.confirmation.original)
+                      .meanDifference)
+            : "no discovered feature set beat the original variables on validation; these are "
+              "the original variables";
     return file;
   }
-  const auto paired = comparePaired(set.scores, original.scores);
   file.meta["fitness"] = fmt::format("{}", set.gpFitness);
   file.meta["gp_trials"] = std::to_string(set.gpTrials);
-  file.meta["verdict"] = fmt::format(
-      "beats the original variables on validation by {:.4g} (paired t-test p = {:.3g}{})",
-      paired.meanDifference, paired.p, paired.p < 0.05 ? "" : ", not significant");
+  file.meta["verdict"] =
+      fmt::format("beats the original variables on {} by {:.4g} (paired t-test p = {:.3g}{})",
+                  reported.confirmed ? "the confirmation seeds" : "validation",
+                  paired.meanDifference, paired.p, paired.p < 0.05 ? "" : ", not significant");
   if (config.normalise) file.meta["normalised"] = "each feature scaled on sampled states";
   return file;
 }

@@ -29,7 +29,7 @@ TEST(Evolve, WritesTheResultsDirectory) {
   const auto r = runGpfd("evolve " + tinyConfig() + " --quiet --out " + dir);
   ASSERT_EQ(r.status, 0) << r.output;
   for (const char* file : {"config.toml", "run.json", "generations.csv", "best.features",
-                           "checkpoint.json", "validation.csv", "front.csv",
+                           "checkpoint.json", "validation.csv", "confirmation.csv", "front.csv",
                            "best/generation-0000.features", "best/generation-0005.features"}) {
     EXPECT_TRUE(std::filesystem::exists(dir + "/" + file)) << file;
   }
@@ -150,6 +150,8 @@ TEST(Evolve, RunsMakeASetThatResumes) {
   ASSERT_EQ(r.status, 0) << r.output;
   const auto runs = readText(dir + "/runs.csv");
   EXPECT_EQ(std::count(runs.begin(), runs.end(), '\n'), 4);
+  EXPECT_NE(runs.find(",p_vs_original,scored_by\n"), std::string::npos) << runs;
+  EXPECT_NE(runs.find(",confirmation\n"), std::string::npos) << runs;
   // Run 1 is the single run with the set's seed.
   const auto single = freshDir("evolve-runs-single");
   ASSERT_EQ(runGpfd("evolve " + tinyConfig() + " --generations 3 --quiet --out " + single).status,
@@ -194,7 +196,12 @@ TEST(Evolve, BadDiscoveryKeysNameTheKey) {
            {"validation.candidates=-1", "validation.candidates"},
            {"validation.every=-2", "validation.every"},
            {"fitness.state_sample=0", "fitness.state_sample"},
-           {"validation.params.updatez=3", "updatez"}}) {
+           {"validation.params.updatez=3", "updatez"},
+           {"validation.confirm_seeds=1", "validation.confirm_seeds"},
+           {"validation.confirm_seeds=-1", "validation.confirm_seeds"},
+           {"validation.confirm_measure=best", "validation.confirm_measure"},
+           {"validation.confirm_params.updates=-1", "validation.confirm_params.updates"},
+           {"validation.confirm_params.updatez=3", "updatez"}}) {
     const auto r = runGpfd("evolve " + tinyConfig() + " --quiet --out " + freshDir("bad-key") +
                            " --set " + set);
     EXPECT_EQ(r.status, 2) << set << ": " << r.output;
@@ -202,17 +209,23 @@ TEST(Evolve, BadDiscoveryKeysNameTheKey) {
   }
 }
 
-// The winner's curse is gone: the validated score that best.features carries agrees with the
-// same trial re-measured on fresh seeds, within 2 standard errors of their difference.
+// The winner's curse is gone: the validated score that best.features carries (the
+// confirmation's, on seeds the choice never saw) agrees with the same trial re-measured on fresh
+// seeds, within 2 standard errors of their difference.
 TEST(Evolve, TheValidatedScoreHoldsOnFreshSeeds) {
   const auto dir = freshDir("evolve-honest");
-  ASSERT_EQ(runGpfd("evolve " + tinyConfig() + " --quiet --out " + dir).status, 0);
+  ASSERT_EQ(runGpfd("evolve " + tinyConfig() +
+                    " --quiet --set validation.confirm_params.updates=8 --out " + dir)
+                .status,
+            0);
   const auto config = run::loadExperimentConfig(dir + "/config.toml");
   const auto file = expr::readFeaturesFile(dir + "/best.features");
+  EXPECT_EQ(file.meta.at("validated_by").rfind("confirmation on 30 fresh seeds", 0), 0u);
   const auto validated = file.meta.at("validated");  // "MEAN +- SE (M trials)"
   const double mean = std::stod(validated);
   const double se = std::stod(validated.substr(validated.find("+-") + 2));
-  const run::Validator remeasure(config, 2, run::Validator::kRemeasureStream);
+  const run::Validator remeasure(config, 2, run::LearningTask::Budget::Confirmation, 30,
+                                 run::Validator::kRemeasureStream);
   const auto scores = remeasure.score(std::vector<std::shared_ptr<const features::FeatureMap>>{
       run::genomeFeatureMap(file.genome, 4, config.withOriginal)})[0];
   const auto fresh = run::summarize(scores);

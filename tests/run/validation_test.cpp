@@ -60,7 +60,7 @@ TEST(Validation, TablesListEverySetAndTheFront) {
   const std::vector<ValidatedSet> sets{set("", {1, 2, 3}), set("x", {2, 2.5, 3}),
                                        set("sin(th) * dth", {2.5, 3, 3.5}),
                                        set("th * th * th * th", {0, 1, 2})};
-  const auto csv = formatValidationCsv(sets, kNames);
+  const auto csv = formatValidationCsv(sets, 2, kNames);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);
   EXPECT_NE(csv.find("1,hall-of-fame,-1,4,1"), std::string::npos);  // Best first, selected.
   // The front: x (1 node) beats every smaller set; sin(th) * dth (4 nodes) beats x; the
@@ -69,6 +69,33 @@ TEST(Validation, TablesListEverySetAndTheFront) {
   EXPECT_EQ(std::count(front.begin(), front.end(), '\n'), 3);
   EXPECT_NE(front.find("\"x\""), std::string::npos);
   EXPECT_NE(front.find("\"sin(th) * dth\""), std::string::npos);
+}
+
+TEST(Validation, ConfirmationDecidesAndIsWhatIsReported) {
+  ValidationState state;
+  state.sets = {set("", {1, 2, 3}), set("x", {3, 3, 3}), set("th", {1, 1, 1})};
+  EXPECT_EQ(returnedIndex(state, 4), 1u);  // Not confirmed: the validation winner.
+  EXPECT_FALSE(reportedScores(state, 4).confirmed);
+  EXPECT_EQ(reportedScores(state, 4).returned, &state.sets[1].scores);
+
+  state.confirmation = {state.sets[1].key, {2, 2.5, 3}, {2, 2, 2}};  // Holds: +0.5.
+  EXPECT_EQ(returnedIndex(state, 4), 1u);
+  const auto held = reportedScores(state, 4);
+  EXPECT_TRUE(held.confirmed);
+  EXPECT_EQ(held.returned, &state.confirmation.winner);
+  EXPECT_EQ(held.original, &state.confirmation.original);
+
+  state.confirmation.winner = {2, 2, 1.5};  // Does not hold: the original variables return.
+  EXPECT_FALSE(state.confirmation.held());
+  EXPECT_EQ(returnedIndex(state, 4), 0u);
+  EXPECT_EQ(reportedScores(state, 4).returned, &state.confirmation.original);
+  const auto csv = formatConfirmationCsv(state, kNames);
+  EXPECT_NE(csv.find("validation-winner,1.8333"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("original,2,0,0,3,0,1,1,"), std::string::npos) << csv;
+
+  state.sets.push_back(set("dx", {5, 5, 5}));  // A new winner: the old confirmation is stale.
+  EXPECT_EQ(returnedIndex(state, 4), 3u);
+  EXPECT_FALSE(reportedScores(state, 4).confirmed);
 }
 
 TEST(MethodVerdict, CountsRunsAndReadsBack) {

@@ -27,13 +27,6 @@ struct GenerationRecord {
   expr::Genome bestGenome;
 };
 
-// The validation stage's results so far.
-struct ValidationState {
-  std::vector<ValidatedSet> sets;  // Every set validated, the original variables included.
-  int finalGeneration = -1;        // The last generation after which the winner was chosen.
-  double seconds = 0.0;            // Wall time spent validating.
-};
-
 struct Checkpoint {
   std::string version;  // gpfd's version; a checkpoint of another version is refused.
   std::string config;   // The resolved config (TOML text) the run was started with.

@@ -70,12 +70,23 @@ struct ExperimentConfig {
     int seeds = 30;
     int every = 0;  // Also validate the hall of fame every this many generations; 0: at the end.
     std::map<std::string, std::string> params;
+    // Confirmation (docs/discovery.md): the validation winner and the original variables are
+    // trained once more on confirmSeeds fresh seeds with learner.params overridden by
+    // confirmParams, scored by confirmMeasure; the winner is returned only when it beats the
+    // original variables there, and that score is what best.features reports. 0: no confirmation
+    // (the validation score is reported, biased by the choice among the candidates).
+    int confirmSeeds = 30;
+    std::map<std::string, std::string> confirmParams;
+    TrialMeasure confirmMeasure = TrialMeasure::Final;
   } validation;
 
   int assessRuns = 20;  // Independent long trainings per feature set in `gpfd assess`.
   // The long budget: learner settings that override learnerParams for assessment.
   std::map<std::string, std::string> assessParams;
 };
+
+// The measure's name as configs spell it: "mean", "final" or "last_fraction".
+std::string measureName(TrialMeasure measure);
 
 // Reads a config from TOML text; `source` names it in errors. Unknown keys (with a suggestion),
 // type errors and out-of-range values throw InputError at file:line:column. `overrides` are

@@ -21,9 +21,10 @@ namespace gpfd::run {
 class LearningTask {
  public:
   // `budget` selects the learner settings: the short trials of GP fitness, the validation trials
-  // (learner.params overridden by validation.params), or the long training of assessment
-  // (learner.params overridden by assess.params).
-  enum class Budget { Trial, Validation, Assessment };
+  // (learner.params overridden by validation.params), the confirmation trials (overridden by
+  // validation.confirm_params, scored by validation.confirm_measure), or the long training of
+  // assessment (overridden by assess.params).
+  enum class Budget { Trial, Validation, Confirmation, Assessment };
   LearningTask(const ExperimentConfig& config, Budget budget);
 
   const ExperimentConfig& config() const { return config_; }
@@ -45,11 +46,13 @@ class LearningTask {
   // learner can (rl::Learner::trainRuns): curve k is exactly train(map, rngs[k]). Thread-safe.
   std::vector<rl::LearningCurve> trainRuns(const features::FeatureMap& map,
                                            std::span<Rng> rngs) const;
-  // The trial's performance under the configured measure; -inf when the run diverged or is empty.
+  // The trial's performance under the budget's measure (fitness.measure, or
+  // validation.confirm_measure for confirmation); -inf when the run diverged or is empty.
   double score(const rl::LearningCurve& curve) const;
 
  private:
   ExperimentConfig config_;
+  TrialMeasure measure_;
   std::map<std::string, std::string> learnerParams_;
   std::vector<std::string> stateNames_;
   std::shared_ptr<const FeatureSample> sample_;

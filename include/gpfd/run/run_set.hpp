@@ -32,8 +32,9 @@ struct RunOutcome {
   double gpBest = 0.0;     // The GP's best fitness in the last generation (a biased number).
   bool validated = false;  // Without validation the GP's best is returned and the rest is empty.
   bool originalWon = false;
-  Summary winner, original;     // Validation scores of the returned set and the original variables.
-  PairedComparison vsOriginal;  // winner - original on the validation seeds.
+  bool confirmed = false;       // The scores below are the confirmation's (else validation's).
+  Summary winner, original;     // Reported scores of the returned set and the original variables.
+  PairedComparison vsOriginal;  // winner - original on the same seeds.
   std::size_t features = 0, size = 0;
 };
 RunOutcome outcomeOf(const Discovery& discovery, int run);

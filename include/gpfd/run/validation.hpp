@@ -1,8 +1,10 @@
 // run: the validation stage that decides what a discovery run returns. The GP's own fitness of
 // its best genome is the maximum of many noisy estimates, so it overstates that genome (the
 // winner's curse). Here the best distinct genomes (a hall of fame) and the original state
-// variables are each trained again on the same fresh validation seeds, and the best mean wins:
-// when no discovered set beats the original variables, the original variables are returned.
+// variables are each trained again on the same fresh validation seeds, and the best mean wins.
+// The winner is then confirmed: it and the original variables are trained once more on other
+// fresh seeds (possibly with a longer trial); a discovered winner that does not beat the original
+// variables there is not returned, and the confirmation's scores are the ones reported.
 #pragma once
 
 #include <cstdint>
@@ -33,6 +35,27 @@ struct ValidatedSet {
   Summary summary() const { return summarize(scores); }
 };
 
+// The validation winner and the original variables trained once more, on fresh seeds and with
+// the confirmation trial (config.validation.confirm_*): scores that the choice among the
+// candidates did not see, hence unbiased estimates of what is returned.
+struct Confirmation {
+  std::string key;               // The validation winner's key; empty: the original variables won.
+  std::vector<double> winner;    // The winner's scores, in seed order (empty when key is empty).
+  std::vector<double> original;  // The original variables' scores on the same seeds.
+
+  bool done() const { return !original.empty(); }
+  // Whether a discovered winner holds: its mean difference from the original variables is > 0.
+  bool held() const;
+};
+
+// The validation stage's results so far.
+struct ValidationState {
+  std::vector<ValidatedSet> sets;  // Every set validated, the original variables included.
+  Confirmation confirmation;       // Of the final choice; not done when confirm_seeds is 0.
+  int finalGeneration = -1;        // The last generation after which the winner was chosen.
+  double seconds = 0.0;            // Wall time spent validating and confirming.
+};
+
 // A member of the hall of fame: one of the best distinct genomes the cache has scored.
 struct HallOfFameEntry {
   std::string key;
@@ -55,8 +78,16 @@ class Validator {
   static constexpr std::uint64_t kValidationStream = 2;
   // Fresh seeds for re-measuring a returned set, never used by the run itself.
   static constexpr std::uint64_t kRemeasureStream = 3;
+  static constexpr std::uint64_t kConfirmationStream = 4;
 
+  // Validation trials on config.validation.seeds seeds of `stream`.
   Validator(const ExperimentConfig& config, int threads, std::uint64_t stream = kValidationStream);
+  // `seeds` trials of the `budget` (Validation or Confirmation) on seeds of `stream`.
+  Validator(const ExperimentConfig& config, int threads, LearningTask::Budget budget, int seeds,
+            std::uint64_t stream);
+  // The trials that confirm the choice: config.validation.confirm_seeds seeds of
+  // kConfirmationStream with the confirmation trial.
+  static Validator confirmation(const ExperimentConfig& config, int threads);
   // scores[set][m] of the feature maps.
   std::vector<std::vector<double>> score(
       const std::vector<std::shared_ptr<const features::FeatureMap>>& maps) const;
@@ -67,6 +98,7 @@ class Validator {
  private:
   LearningTask task_;
   int threads_;
+  int seeds_;
   std::uint64_t stream_;
 };
 
@@ -77,9 +109,26 @@ std::size_t chooseWinner(const std::vector<ValidatedSet>& sets, std::size_t stat
 // The index of the original variables in `sets`.
 std::size_t originalIndex(const std::vector<ValidatedSet>& sets);
 
-// validation.csv: every set, best mean first, with its comparison to the original variables.
-std::string formatValidationCsv(const std::vector<ValidatedSet>& sets,
+// What the run returns: the validation winner, or the original variables when the confirmation
+// of a discovered winner did not hold. An index into state.sets.
+std::size_t returnedIndex(const ValidationState& state, std::size_t stateDim);
+
+// The scores that stand for the returned set and for the original variables: the confirmation's
+// when it was done (unbiased), else the validation's (biased upwards by the choice).
+struct ReportedScores {
+  const std::vector<double>* returned;
+  const std::vector<double>* original;
+  bool confirmed;
+};
+ReportedScores reportedScores(const ValidationState& state, std::size_t stateDim);
+
+// validation.csv: every set, best mean first, with its comparison to the original variables;
+// `selected` marks the set at index `returned`.
+std::string formatValidationCsv(const std::vector<ValidatedSet>& sets, std::size_t returned,
                                 const std::vector<std::string>& stateNames);
+// confirmation.csv: the confirmed sets (the winner, the original variables) and which is returned.
+std::string formatConfirmationCsv(const ValidationState& state,
+                                  const std::vector<std::string>& stateNames);
 // The complexity front: indices of the best validated set at each size, smallest first; a set
 // is on it only where its mean beats every smaller set's.
 std::vector<std::size_t> frontIndices(const std::vector<ValidatedSet>& sets, std::size_t stateDim);
@@ -90,10 +139,11 @@ std::string formatFrontCsv(const std::vector<ValidatedSet>& sets,
 std::string formatFrontTable(const std::vector<ValidatedSet>& sets,
                              const std::vector<std::string>& stateNames);
 
-// The features file of the validation winner (`prepared`: the genome as the learner sees it,
-// e.g. normalised), with `# validated`, `# original` and `# verdict` lines.
-expr::FeaturesFile winnerFeaturesFile(const std::vector<ValidatedSet>& sets, std::size_t winner,
-                                      const expr::Genome& prepared, const LearningTask& task);
+// The features file of what the run returns (`prepared`: its genome as the learner sees it,
+// e.g. normalised), with `# validated` (the reported score), `# validated_by`, `# selection`
+// (the validation score that chose it), `# original` and `# verdict` lines.
+expr::FeaturesFile returnedFeaturesFile(const ValidationState& state, const expr::Genome& prepared,
+                                        const LearningTask& task);
 
 // "MEAN +- SE (M trials)".
 std::string formatMeanSe(const Summary& summary);
