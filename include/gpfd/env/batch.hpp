@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "gpfd/env/environment.hpp"
 #include "gpfd/util/rng.hpp"
@@ -35,6 +36,27 @@ struct BatchBuffers {
   // array) are scratch that the AVX2 path may overwrite with garbage, which spares it copying a
   // last partial group of lanes. False (default): nothing beyond `lanes` is touched.
   bool scratchTail = false;
+};
+
+// Owns the buffers of a batch: rows of `stride` for `lanes` lanes, zero-filled, and the
+// BatchBuffers that point into them (its `lanes` and `scratchTail` may be changed between steps).
+// Neither copied nor moved, so that the pointers stay valid.
+class BatchStorage {
+ public:
+  BatchStorage(std::size_t lanes, std::size_t stride, std::size_t stateDim,
+               std::size_t actionComponents);
+  BatchStorage(const BatchStorage&) = delete;
+  BatchStorage& operator=(const BatchStorage&) = delete;
+
+  BatchBuffers& buffers() { return io_; }
+  const BatchBuffers& buffers() const { return io_; }
+
+  std::vector<double> state, action, reward;
+  std::vector<std::int32_t> elapsed;
+  std::vector<std::uint8_t> terminated, truncated;
+
+ private:
+  BatchBuffers io_;
 };
 
 // How lanes are computed: Auto takes AVX2 where cpuHasAvx2(), Scalar one lane at a time (the
@@ -73,6 +95,8 @@ class BatchEnvironment {
 // reference solver off). Tetris has none (its learner evaluates afterstates in bulk instead).
 std::unique_ptr<BatchEnvironment> makeBatchEnvironment(const Environment& env,
                                                        BatchIsa isa = BatchIsa::Auto);
+// Whether makeBatchEnvironment(env) gives a batched form; cheap (nothing is made).
+bool hasBatchEnvironment(const Environment& env);
 // The same by registry name and parameters (Python's vector environment); InputError when the
 // environment has no batched form.
 std::unique_ptr<BatchEnvironment> makeBatchEnvironment(const std::string& name,
