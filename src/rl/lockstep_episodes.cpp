@@ -50,6 +50,7 @@ class LockstepPlayer final : public Player {
         scale_(normalise_ ? rawDim_ * stride_ : 0, 1.0),
         weight_(stride_, 1.0),
         failed_(stride_, 0),
+        broken_(stride_, 0),
         episode_(stride_, 0),
         run_(stride_, 0),
         rngs_(stride_) {
@@ -78,11 +79,7 @@ class LockstepPlayer final : public Player {
       lanes_.lanes = (active + 3) / 4 * 4;
       features(active, normalise_ ? &out.moments : nullptr);
       lockstep::linearOutputs(lanes_, weights_.data(), outputs_, dim_, phi_.data(), mu_.data());
-      for (std::size_t l = 0; l < active; ++l) {
-        for (std::size_t i = 0; i < outputs_ && !failed_[l]; ++i) {
-          if (!std::isfinite(mu_[i * stride_ + l])) failed_[l] = 1;
-        }
-      }
+      lockstep::flagNotFinite(lanes_, mu_.data(), outputs_, failed_.data());
       if (sampling) {
         sample(active);
       } else {
@@ -98,15 +95,9 @@ class LockstepPlayer final : public Player {
   // marks the lanes whose features are not finite. The map evaluates whole groups of four (the
   // JIT's AVX2 kernel; the rows beyond `active` hold old states and are ignored).
   void features(std::size_t active, std::vector<FeatureMoments>* moments) {
-    for (std::size_t i = 0; i < stateDim_; ++i) {
-      const double* from = store_.state.data() + i * stride_;
-      for (std::size_t l = 0; l < lanes_.lanes; ++l) rows_[l * stateDim_ + i] = from[l];
-    }
+    lockstep::toLaneMajor(lanes_, store_.state.data(), stateDim_, rows_.data());
     s_.map->evaluateBatch(rows_.data(), lanes_.lanes, raw_.data());
-    for (std::size_t j = 0; j < rawDim_; ++j) {
-      double* to = phi_.data() + j * stride_;
-      for (std::size_t l = 0; l < lanes_.lanes; ++l) to[l] = raw_[l * rawDim_ + j];
-    }
+    lockstep::fromLaneMajor(lanes_, raw_.data(), rawDim_, phi_.data());
     lockstep::checkAndNormalise(lanes_, phi_.data(), rawDim_, normalise_ ? shift_.data() : nullptr,
                                 scale_.data(), failed_.data());
     if (moments != nullptr) {
@@ -123,7 +114,9 @@ class LockstepPlayer final : public Player {
       const std::size_t weightCount = outputs_ * dim_;
       const bool learnStd = parameters_ > weightCount;
       for (std::size_t i = 0; i < outputs_; ++i) {
-        rngs_.standardNormal(active, eps_.data(), lanes_.avx2);
+        // With AVX2 the lanes up to the group of four draw too: the lanes beyond `active` hold
+        // no episode (a lane that starts one gets its stream anew), so their draws are unused.
+        rngs_.standardNormal(lanes_.avx2 ? lanes_.lanes : active, eps_.data(), lanes_.avx2);
         lockstep::gaussianActions(
             lanes_, mu_.data() + i * stride_, eps_.data(), sd_.data() + i * stride_,
             policy.centre(i), policy.halfWidth(i), store_.action.data() + i * stride_,
@@ -180,6 +173,10 @@ class LockstepPlayer final : public Player {
   // Books the step of every lane, retires the episodes that ended and compacts the lanes.
   // Returns the number of lanes still running.
   std::size_t finish(std::size_t active, bool sampling, Records& out) {
+    // As the sequential player checks: a reward or state variable that is not finite.
+    std::fill(broken_.begin(), broken_.begin() + static_cast<std::ptrdiff_t>(lanes_.lanes), 0);
+    lockstep::flagNotFinite(lanes_, store_.reward.data(), 1, broken_.data());
+    lockstep::flagNotFinite(lanes_, store_.state.data(), stateDim_, broken_.data());
     for (std::size_t l = active; l-- > 0;) {
       Outcome& outcome = out.outcomes[episode_[l]];
       bool done = true;
@@ -188,7 +185,7 @@ class LockstepPlayer final : public Player {
       } else {
         ++outcome.steps;
         const double r = store_.reward[l];
-        if (!std::isfinite(r) || !stateFinite(l)) {  // As the sequential player checks.
+        if (broken_[l]) {
           outcome.ok = false;
         } else {
           outcome.undiscounted += r;
@@ -203,13 +200,6 @@ class LockstepPlayer final : public Player {
       --active;
     }
     return active;
-  }
-
-  bool stateFinite(std::size_t lane) const {
-    for (std::size_t i = 0; i < stateDim_; ++i) {
-      if (!std::isfinite(store_.state[i * stride_ + lane])) return false;
-    }
-    return true;
   }
 
   void retire(std::size_t lane, Eigen::VectorXd& eligibility, Outcome& outcome) {
@@ -277,6 +267,7 @@ class LockstepPlayer final : public Player {
   std::vector<double> weights_, sd_, shift_, scale_;  // Each lane's run's parameters.
   std::vector<double> weight_;                        // Discount weight of the next reward.
   std::vector<std::uint8_t> failed_;
+  std::vector<std::uint8_t> broken_;  // A step's reward or state is not finite.
   std::vector<std::size_t> episode_;  // The episode (index into the call's tasks) of each lane.
   std::vector<std::size_t> run_;      // Its run.
   RngLanes rngs_;                     // Each lane's episode's stream.
