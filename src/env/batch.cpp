@@ -11,11 +11,14 @@ namespace gpfd::env {
 namespace {
 
 BatchIsa resolve(BatchIsa isa) {
+  if (isa == BatchIsa::Avx512 && !cpuHasAvx512()) {
+    throw std::invalid_argument("batched environment: AVX-512 asked for but not available");
+  }
   if (isa == BatchIsa::Avx2 && !cpuHasAvx2()) {
     throw std::invalid_argument("batched environment: AVX2 asked for but not available");
   }
-  if (isa == BatchIsa::Auto) return cpuHasAvx2() ? BatchIsa::Avx2 : BatchIsa::Scalar;
-  return isa;
+  if (isa != BatchIsa::Auto) return isa;
+  return cpuHasAvx512() ? BatchIsa::Avx512 : cpuHasAvx2() ? BatchIsa::Avx2 : BatchIsa::Scalar;
 }
 
 using Maker = std::unique_ptr<BatchEnvironment> (*)(const Environment&, BatchIsa);

@@ -50,6 +50,7 @@ std::string describe(const Case& c) {
 std::vector<BatchIsa> isas() {
   std::vector<BatchIsa> out{BatchIsa::Scalar};
   if (cpuHasAvx2()) out.push_back(BatchIsa::Avx2);
+  if (cpuHasAvx512()) out.push_back(BatchIsa::Avx512);
   return out;
 }
 
@@ -100,10 +101,11 @@ TEST_P(BatchVsScalar, SingleStepsFromRandomStatesMatchBitForBit) {
     const auto scalar = Registry::global().make(c.env, c.params);
     const auto batch = makeBatchEnvironment(*scalar, GetParam());
     ASSERT_NE(batch, nullptr);
-    EXPECT_EQ(batch->usesAvx2(), GetParam() == BatchIsa::Avx2);
+    EXPECT_EQ(batch->isa(), GetParam());
+    EXPECT_EQ(batch->usesAvx2(), GetParam() != BatchIsa::Scalar);
     const std::size_t dim = scalar->stateDim();
     const ActionSpace space = scalar->actionSpace();
-    for (std::size_t lanes = 1; lanes <= 9; ++lanes) {
+    for (std::size_t lanes = 1; lanes <= 19; ++lanes) {
       Lanes b(lanes, dim, space.components);
       std::vector<std::vector<double>> states(lanes), actions(lanes);
       for (std::size_t l = 0; l < lanes; ++l) {
@@ -148,7 +150,7 @@ TEST_P(BatchVsScalar, TrajectoriesWithResetsMatchBitForBit) {
     SCOPED_TRACE(describe(c));
     const auto proto = Registry::global().make(c.env, c.params);
     const auto batch = makeBatchEnvironment(*proto, GetParam());
-    const std::size_t lanes = 6, dim = proto->stateDim();
+    const std::size_t lanes = 13, dim = proto->stateDim();  // 8 + 4 + 1: every group size.
     const ActionSpace space = proto->actionSpace();
     Lanes b(lanes, dim, space.components);
     std::vector<std::unique_ptr<Environment>> envs;
@@ -189,7 +191,9 @@ TEST_P(BatchVsScalar, TrajectoriesWithResetsMatchBitForBit) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Isa, BatchVsScalar, ::testing::ValuesIn(isas()), [](const auto& param) {
-  return std::string(param.param == BatchIsa::Avx2 ? "Avx2" : "Scalar");
+  return std::string(param.param == BatchIsa::Avx512 ? "Avx512"
+                     : param.param == BatchIsa::Avx2 ? "Avx2"
+                                                     : "Scalar");
 });
 
 TEST(Batch, DiscreteActionOutsideTheChoicesIsAnInputErrorBeforeAnyLaneMoves) {

@@ -8,8 +8,9 @@
 //
 // Every lane gives, bit for bit, what the scalar environment's step() gives from the same state,
 // step count and action: both run the same dynamics templates (cartpole_dynamics.hpp, ...), on
-// four lanes at a time with AVX2 where the CPU has it (util/cpu.hpp), one lane at a time
-// otherwise. tests/env/test_batch.cpp checks it on random states and actions, both ways.
+// eight lanes at a time with AVX-512 or four with AVX2 where the CPU has them (util/cpu.hpp), one
+// lane at a time otherwise. tests/env/test_batch.cpp checks it on random states and actions, every
+// way.
 #pragma once
 
 #include <cstddef>
@@ -59,9 +60,11 @@ class BatchStorage {
   BatchBuffers io_;
 };
 
-// How lanes are computed: Auto takes AVX2 where cpuHasAvx2(), Scalar one lane at a time (the
-// fallback, and for tests), Avx2 insists (std::invalid_argument where the CPU lacks it).
-enum class BatchIsa { Auto, Avx2, Scalar };
+// How lanes are computed: Auto takes the widest the CPU offers (util/cpu.hpp), Scalar one lane at
+// a time (the fallback, and for tests); Avx2 (four lanes per instruction) and Avx512 (cart-pole and
+// Acrobot eight lanes per instruction, the swimmer four) insist (std::invalid_argument where the
+// CPU lacks them).
+enum class BatchIsa { Auto, Avx512, Avx2, Scalar };
 
 class BatchEnvironment {
  public:
@@ -71,7 +74,10 @@ class BatchEnvironment {
   const Environment& scalar() const { return *scalar_; }
   std::size_t stateDim() const { return scalar_->stateDim(); }
   std::size_t actionComponents() const { return scalar_->actionSpace().components; }
-  bool usesAvx2() const { return avx2_; }
+  // The instruction set in use (resolved: Avx512, Avx2 or Scalar). usesAvx2(): AVX2 at least, so
+  // that lane kernels of util/lanes.hpp marked GPFD_AVX2_KERNEL may run.
+  BatchIsa isa() const { return isa_; }
+  bool usesAvx2() const { return isa_ != BatchIsa::Scalar; }
 
   // Starts an episode in lane `lane`: its state is drawn from `rng` exactly as scalar().reset
   // draws it, and elapsed[lane] = 0.
@@ -81,13 +87,13 @@ class BatchEnvironment {
   virtual void step(const BatchBuffers& io) const = 0;
 
  protected:
-  // `isa` must be resolved (Avx2 or Scalar).
+  // `isa` must be resolved (Avx512, Avx2 or Scalar).
   BatchEnvironment(std::unique_ptr<Environment> scalar, BatchIsa isa)
-      : scalar_(std::move(scalar)), avx2_(isa == BatchIsa::Avx2) {}
+      : scalar_(std::move(scalar)), isa_(isa) {}
 
  private:
   std::unique_ptr<Environment> scalar_;
-  bool avx2_;
+  BatchIsa isa_;
 };
 
 // The batched form of `env` (a copy of its parameters), or nullptr when it has none: cart-pole
