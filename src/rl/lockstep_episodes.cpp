@@ -175,8 +175,8 @@ class LockstepPlayer final : public Player {
   std::size_t finish(std::size_t active, bool sampling, Records& out) {
     // As the sequential player checks: a reward or state variable that is not finite.
     std::fill(broken_.begin(), broken_.begin() + static_cast<std::ptrdiff_t>(lanes_.lanes), 0);
-    lockstep::flagNotFinite(lanes_, store_.reward.data(), 1, broken_.data());
-    lockstep::flagNotFinite(lanes_, store_.state.data(), stateDim_, broken_.data());
+    lockstep::flagNotFinite(lanes_, store_.reward.data(), 1, broken_.data(), store_.state.data(),
+                            stateDim_);
     for (std::size_t l = active; l-- > 0;) {
       Outcome& outcome = out.outcomes[episode_[l]];
       bool done = true;

@@ -20,10 +20,11 @@ unsigned notFiniteBits(const Rows& rows, const double* values, std::size_t count
 }
 
 template <class T>
-void flagNotFiniteT(const Rows& rows, const double* values, std::size_t count,
-                    std::uint8_t* flags) {
+void flagNotFiniteT(const Rows& rows, const double* values, std::size_t count, std::uint8_t* flags,
+                    const double* values2, std::size_t count2) {
   for (std::size_t l = 0; l < rows.lanes; l += lanes::kWidth<T>) {
-    const unsigned bits = notFiniteBits<T>(rows, values, count, l);
+    const unsigned bits =
+        notFiniteBits<T>(rows, values, count, l) | notFiniteBits<T>(rows, values2, count2, l);
     if (bits == 0) continue;
     for (std::size_t k = 0; k < lanes::kWidth<T>; ++k) flags[l + k] |= (bits >> k) & 1u;
   }
@@ -133,8 +134,9 @@ GPFD_AVX2_KERNEL void checkAndNormaliseAvx2(const Rows& rows, double* phi, std::
   checkAndNormaliseT<lanes::Lanes4>(rows, phi, dim, shift, scale, failed);
 }
 GPFD_AVX2_KERNEL void flagNotFiniteAvx2(const Rows& rows, const double* values, std::size_t count,
-                                        std::uint8_t* flags) {
-  flagNotFiniteT<lanes::Lanes4>(rows, values, count, flags);
+                                        std::uint8_t* flags, const double* values2,
+                                        std::size_t count2) {
+  flagNotFiniteT<lanes::Lanes4>(rows, values, count, flags, values2, count2);
 }
 GPFD_AVX2_KERNEL void transposeAvx2(const Rows& rows, const double* from, std::size_t dim,
                                     double* to, bool toLanes) {
@@ -165,9 +167,10 @@ void checkAndNormalise(const Rows& rows, double* phi, std::size_t dim, const dou
   checkAndNormaliseT<double>(rows, phi, dim, shift, scale, failed);
 }
 
-void flagNotFinite(const Rows& rows, const double* values, std::size_t count, std::uint8_t* flags) {
-  if (rows.avx2) return flagNotFiniteAvx2(rows, values, count, flags);
-  flagNotFiniteT<double>(rows, values, count, flags);
+void flagNotFinite(const Rows& rows, const double* values, std::size_t count, std::uint8_t* flags,
+                   const double* values2, std::size_t count2) {
+  if (rows.avx2) return flagNotFiniteAvx2(rows, values, count, flags, values2, count2);
+  flagNotFiniteT<double>(rows, values, count, flags, values2, count2);
 }
 
 void toLaneMajor(const Rows& rows, const double* soa, std::size_t dim, double* aos) {
