@@ -125,11 +125,14 @@ void BM_TetrisDecision(benchmark::State& state) {
 
 // The batched environment (env/batch.hpp): a batch of lanes from random starts stepped on random
 // actions, each lane reset when its episode ends; ns per lane-step (items). Arguments: lanes, and
-// 1 for the AVX2 lanes or 0 for one lane at a time.
+// 2 for AVX-512 lanes, 1 for AVX2 lanes or 0 for one lane at a time.
 void stepBatch(benchmark::State& state, const std::string& name, const Params& params) {
-  const BatchIsa isa = state.range(1) != 0 ? BatchIsa::Avx2 : BatchIsa::Scalar;
-  if (isa == BatchIsa::Avx2 && !gpfd::cpuHasAvx2()) {
-    state.SkipWithError("no AVX2");
+  const BatchIsa isa = state.range(1) == 2   ? BatchIsa::Avx512
+                       : state.range(1) == 1 ? BatchIsa::Avx2
+                                             : BatchIsa::Scalar;
+  if ((isa == BatchIsa::Avx2 && !gpfd::cpuHasAvx2()) ||
+      (isa == BatchIsa::Avx512 && !gpfd::cpuHasAvx512())) {
+    state.SkipWithError("instruction set not available");
     return;
   }
   const auto batch = makeBatchEnvironment(name, params, isa);
@@ -167,7 +170,7 @@ void BM_BatchAcrobot(benchmark::State& s) { stepBatch(s, "acrobot", {}); }
 void BM_BatchSwimmer3(benchmark::State& s) { stepBatch(s, "swimmer", {{"segments", "3"}}); }
 void BM_BatchSwimmer5(benchmark::State& s) { stepBatch(s, "swimmer", {{"segments", "5"}}); }
 void batchArgs(benchmark::internal::Benchmark* b) {
-  for (const int lanes : {1, 4, 10, 64}) b->Args({lanes, 0})->Args({lanes, 1});
+  for (const int lanes : {1, 4, 10, 64}) b->Args({lanes, 0})->Args({lanes, 1})->Args({lanes, 2});
 }
 
 BENCHMARK(BM_Acrobot);

@@ -6,43 +6,33 @@ namespace gpfd::python {
 
 BatchLanes::BatchLanes(std::unique_ptr<env::BatchEnvironment> batch, std::size_t n,
                        std::span<const double> start)
-    : batch_(std::move(batch)), dim_(batch_->stateDim()), components_(batch_->actionComponents()) {
-  const std::size_t stride = (n + 3) / 4 * 4;
-  state_.assign(dim_ * stride, 0.0);
-  action_.assign(components_ * stride, 0.0);
-  reward_.assign(stride, 0.0);
-  elapsed_.assign(stride, 0);
-  terminated_.assign(stride, 0);
-  truncated_.assign(stride, 0);
-  io_ = {.lanes = n,
-         .stride = stride,
-         .state = state_.data(),
-         .action = action_.data(),
-         .elapsed = elapsed_.data(),
-         .reward = reward_.data(),
-         .terminated = terminated_.data(),
-         .truncated = truncated_.data(),
-         .scratchTail = true};  // The lanes up to `stride` are scratch.
+    : batch_(std::move(batch)),
+      dim_(batch_->stateDim()),
+      components_(batch_->actionComponents()),
+      lanes_(n, (n + 3) / 4 * 4, dim_, components_) {
+  lanes_.buffers().scratchTail = true;  // The lanes up to the stride are scratch.
   for (std::size_t l = 0; l < n; ++l) writeState(l, start);
 }
 
 void BatchLanes::step(const double* actions) {
-  const std::size_t stride = io_.stride;
-  for (std::size_t l = 0; l < io_.lanes; ++l) {
+  const std::size_t stride = lanes_.buffers().stride;
+  for (std::size_t l = 0; l < size(); ++l) {
     for (std::size_t c = 0; c < components_; ++c) {
-      action_[c * stride + l] = actions[l * components_ + c];
+      lanes_.action[c * stride + l] = actions[l * components_ + c];
     }
   }
-  batch_->step(io_);
+  batch_->step(lanes_.buffers());
 }
 
 void BatchLanes::readState(std::size_t lane, double* row) const {
-  for (std::size_t i = 0; i < dim_; ++i) row[i] = state_[i * io_.stride + lane];
+  const std::size_t stride = lanes_.buffers().stride;
+  for (std::size_t i = 0; i < dim_; ++i) row[i] = lanes_.state[i * stride + lane];
 }
 
 void BatchLanes::writeState(std::size_t lane, std::span<const double> row) {
-  for (std::size_t i = 0; i < dim_; ++i) state_[i * io_.stride + lane] = row[i];
-  elapsed_[lane] = 0;
+  const std::size_t stride = lanes_.buffers().stride;
+  for (std::size_t i = 0; i < dim_; ++i) lanes_.state[i * stride + lane] = row[i];
+  lanes_.elapsed[lane] = 0;
 }
 
 }  // namespace gpfd::python

@@ -8,7 +8,6 @@
 #include <cstdint>
 #include <memory>
 #include <span>
-#include <vector>
 
 #include "gpfd/env/batch.hpp"
 #include "gpfd/util/rng.hpp"
@@ -22,9 +21,9 @@ class BatchLanes {
   BatchLanes(std::unique_ptr<env::BatchEnvironment> batch, std::size_t n,
              std::span<const double> start);
 
-  std::size_t size() const { return io_.lanes; }
+  std::size_t size() const { return lanes_.buffers().lanes; }
   // Starts an episode in `lane` from `rng`, exactly as the scalar environment's reset.
-  void reset(std::size_t lane, Rng& rng) { batch_->reset(rng, io_, lane); }
+  void reset(std::size_t lane, Rng& rng) { batch_->reset(rng, lanes_.buffers(), lane); }
   // Steps every lane; actions: size() rows of actionComponents() values, already checked.
   void step(const double* actions);
   // The lane's state variables as a row of stateDim() values.
@@ -35,17 +34,14 @@ class BatchLanes {
 
   // What the last step() gave the lane.
   env::StepResult result(std::size_t lane) const {
-    return {reward_[lane], terminated_[lane] != 0, truncated_[lane] != 0};
+    return {lanes_.reward[lane], lanes_.terminated[lane] != 0, lanes_.truncated[lane] != 0};
   }
 
  private:
   std::unique_ptr<env::BatchEnvironment> batch_;
   std::size_t dim_, components_;
-  // Rows of `stride` (n rounded up to a group of four lanes: the tail is scratch for AVX2).
-  std::vector<double> state_, action_, reward_;
-  std::vector<std::int32_t> elapsed_;
-  std::vector<std::uint8_t> terminated_, truncated_;
-  env::BatchBuffers io_;
+  // Rows of n rounded up to a group of four lanes (the tail is scratch for AVX2).
+  env::BatchStorage lanes_;
 };
 
 }  // namespace gpfd::python

@@ -11,14 +11,57 @@ namespace gpfd::env {
 namespace {
 
 BatchIsa resolve(BatchIsa isa) {
+  if (isa == BatchIsa::Avx512 && !cpuHasAvx512()) {
+    throw std::invalid_argument("batched environment: AVX-512 asked for but not available");
+  }
   if (isa == BatchIsa::Avx2 && !cpuHasAvx2()) {
     throw std::invalid_argument("batched environment: AVX2 asked for but not available");
   }
-  if (isa == BatchIsa::Auto) return cpuHasAvx2() ? BatchIsa::Avx2 : BatchIsa::Scalar;
-  return isa;
+  if (isa != BatchIsa::Auto) return isa;
+  return cpuHasAvx512() ? BatchIsa::Avx512 : cpuHasAvx2() ? BatchIsa::Avx2 : BatchIsa::Scalar;
+}
+
+using Maker = std::unique_ptr<BatchEnvironment> (*)(const Environment&, BatchIsa);
+
+// The maker of env's batched form, or nullptr when it has none.
+Maker makerOf(const Environment& env) {
+  if (dynamic_cast<const CartPole*>(&env) != nullptr) {
+    return [](const Environment& e, BatchIsa isa) {
+      return batch::makeCartPole(static_cast<const CartPole&>(e), isa);
+    };
+  }
+  if (dynamic_cast<const Acrobot*>(&env) != nullptr) {
+    return [](const Environment& e, BatchIsa isa) {
+      return batch::makeAcrobot(static_cast<const Acrobot&>(e), isa);
+    };
+  }
+  const auto* swimmer = dynamic_cast<const Swimmer*>(&env);
+  if (swimmer != nullptr && swimmer->fixedSizeBody() != nullptr) {
+    return [](const Environment& e, BatchIsa isa) {
+      return batch::makeSwimmer(static_cast<const Swimmer&>(e), isa);
+    };
+  }
+  return nullptr;
 }
 
 }  // namespace
+
+BatchStorage::BatchStorage(std::size_t lanes, std::size_t stride, std::size_t stateDim,
+                           std::size_t actionComponents)
+    : state(stateDim * stride, 0.0),
+      action(actionComponents * stride, 0.0),
+      reward(stride, 0.0),
+      elapsed(stride, 0),
+      terminated(stride, 0),
+      truncated(stride, 0),
+      io_{.lanes = lanes,
+          .stride = stride,
+          .state = state.data(),
+          .action = action.data(),
+          .elapsed = elapsed.data(),
+          .reward = reward.data(),
+          .terminated = terminated.data(),
+          .truncated = truncated.data()} {}
 
 void BatchEnvironment::reset(Rng& rng, const BatchBuffers& io, std::size_t lane) {
   scalar_->reset(rng);
@@ -27,17 +70,11 @@ void BatchEnvironment::reset(Rng& rng, const BatchBuffers& io, std::size_t lane)
   io.elapsed[lane] = 0;
 }
 
+bool hasBatchEnvironment(const Environment& env) { return makerOf(env) != nullptr; }
+
 std::unique_ptr<BatchEnvironment> makeBatchEnvironment(const Environment& env, BatchIsa isa) {
-  if (const auto* cartPole = dynamic_cast<const CartPole*>(&env)) {
-    return batch::makeCartPole(*cartPole, resolve(isa));
-  }
-  if (const auto* acrobot = dynamic_cast<const Acrobot*>(&env)) {
-    return batch::makeAcrobot(*acrobot, resolve(isa));
-  }
-  if (const auto* swimmer = dynamic_cast<const Swimmer*>(&env)) {
-    return batch::makeSwimmer(*swimmer, resolve(isa));
-  }
-  return nullptr;
+  const Maker maker = makerOf(env);
+  return maker != nullptr ? maker(env, resolve(isa)) : nullptr;
 }
 
 std::unique_ptr<BatchEnvironment> makeBatchEnvironment(const std::string& name,

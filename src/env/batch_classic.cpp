@@ -56,7 +56,7 @@ class ClassicBatch final : public BatchEnvironment {
 
   void step(const BatchBuffers& io) const override {
     if (kernel_.config.discrete) checkChoices(io, choices, scalar().name());
-    stepAll<4, 1>(kernel_, io, usesAvx2(), kernel_.config.maxSteps);
+    stepAll<4, 1, true>(kernel_, io, isa(), kernel_.config.maxSteps);
   }
 
  private:

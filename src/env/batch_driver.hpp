@@ -1,7 +1,8 @@
 // env: the loop shared by the batched environments: it loads the lanes of a structure-of-arrays
 // batch (env/batch.hpp) into std::array<T, S> states, runs a kernel written over the number type
-// T, and stores the results back. T is Lanes4 (four lanes at a time, compiled as AVX2; a last
-// partial group is padded with copies of its last lane) or double (one lane at a time).
+// T, and stores the results back. T is Lanes8 (eight lanes at a time, compiled as AVX-512), Lanes4
+// (four lanes at a time, compiled as AVX2; a last partial group is padded with copies of its last
+// lane) or double (one lane at a time).
 //
 // A kernel: template <class T> lanes::MaskOf<T> operator()(std::array<T, S>& state,
 //   const std::array<T, A>& action, T& reward) const, returning `terminated`.
@@ -29,14 +30,14 @@ void stepGroup(const Kernel& kernel, double* state, const double* action, std::s
     *terminated = kernel(s, a, *reward) ? 1 : 0;
     for (std::size_t i = 0; i < S; ++i) state[i * stride] = s[i];
   } else {
-    for (std::size_t i = 0; i < S; ++i) s[i] = lanes::load(state + i * stride);
-    for (std::size_t c = 0; c < A; ++c) a[c] = lanes::load(action + c * stride);
+    for (std::size_t i = 0; i < S; ++i) s[i] = lanes::loadAs<T>(state + i * stride);
+    for (std::size_t c = 0; c < A; ++c) a[c] = lanes::loadAs<T>(action + c * stride);
     T r;
-    const lanes::Mask4 done = kernel(s, a, r);
+    const lanes::MaskOf<T> done = kernel(s, a, r);
     for (std::size_t i = 0; i < S; ++i) lanes::store(state + i * stride, s[i]);
     lanes::store(reward, r);
     const unsigned bits = lanes::bitsOf(done);
-    for (int j = 0; j < 4; ++j) terminated[j] = (bits >> j) & 1u;
+    for (std::size_t j = 0; j < lanes::kWidth<T>; ++j) terminated[j] = (bits >> j) & 1u;
   }
 }
 
@@ -48,9 +49,10 @@ void stepScalar(const Kernel& kernel, const BatchBuffers& io) {
   }
 }
 
+// Groups of four lanes from lane `l` on; a last partial group is stepped in the scratch tail or
+// padded with copies of its last lane.
 template <std::size_t S, std::size_t A, class Kernel>
-GPFD_AVX2_KERNEL void stepAvx2(const Kernel& kernel, const BatchBuffers& io) {
-  std::size_t l = 0;
+void stepFours(const Kernel& kernel, const BatchBuffers& io, std::size_t l) {
   for (; l + 4 <= io.lanes; l += 4) {
     stepGroup<S, A, lanes::Lanes4>(kernel, io.state + l, io.action + l, io.stride, io.reward + l,
                                    io.terminated + l);
@@ -78,11 +80,30 @@ GPFD_AVX2_KERNEL void stepAvx2(const Kernel& kernel, const BatchBuffers& io) {
   }
 }
 
-// Steps every lane with `kernel`, then counts the step and applies the time limit `maxSteps`
-// (0: none), as the scalar environments do.
 template <std::size_t S, std::size_t A, class Kernel>
-void stepAll(const Kernel& kernel, const BatchBuffers& io, bool avx2, int maxSteps) {
-  if (avx2) {
+GPFD_AVX2_KERNEL void stepAvx2(const Kernel& kernel, const BatchBuffers& io) {
+  stepFours<S, A>(kernel, io, 0);
+}
+
+// Groups of eight lanes (Lanes8: one chain of 512-bit operations), then of four.
+template <std::size_t S, std::size_t A, class Kernel>
+GPFD_AVX512_KERNEL void stepAvx512(const Kernel& kernel, const BatchBuffers& io) {
+  std::size_t l = 0;
+  for (; l + 8 <= io.lanes; l += 8) {
+    stepGroup<S, A, lanes::Lanes8>(kernel, io.state + l, io.action + l, io.stride, io.reward + l,
+                                   io.terminated + l);
+  }
+  stepFours<S, A>(kernel, io, l);
+}
+
+// Steps every lane with `kernel`, then counts the step and applies the time limit `maxSteps`
+// (0: none), as the scalar environments do. `isa` is resolved; Avx512 steps eight lanes at a time
+// only for a kernel that accepts Lanes8 (Wide), four at a time otherwise.
+template <std::size_t S, std::size_t A, bool Wide = false, class Kernel>
+void stepAll(const Kernel& kernel, const BatchBuffers& io, BatchIsa isa, int maxSteps) {
+  if (Wide && isa == BatchIsa::Avx512) {
+    if constexpr (Wide) stepAvx512<S, A>(kernel, io);
+  } else if (isa != BatchIsa::Scalar) {
     stepAvx2<S, A>(kernel, io);
   } else {
     stepScalar<S, A>(kernel, io);

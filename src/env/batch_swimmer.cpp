@@ -38,7 +38,7 @@ class SwimmerBatch final : public BatchEnvironment {
         kernel_{env.config(), *env.fixedSizeBody()} {}
 
   void step(const BatchBuffers& io) const override {
-    stepAll<SwimmerKernel<N>::kState, SwimmerKernel<N>::kAction>(kernel_, io, usesAvx2(),
+    stepAll<SwimmerKernel<N>::kState, SwimmerKernel<N>::kAction>(kernel_, io, isa(),
                                                                  kernel_.config.horizon);
   }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gpfd/expr/ops.hpp"
+#include "gpfd/expr/trig_lanes.hpp"
 #include "gpfd/jit/trig_avx2.hpp"
 #include "gpfd/util/cpu.hpp"
 
@@ -67,6 +68,21 @@ LaneHelper laneHelper(Op op) {
     default:
       return nullptr;
   }
+}
+
+// sin and cos of the same 4 doubles from one reduction, for a batch program that needs both: x is
+// replaced by the value of the instruction met first, `other` receives its partner's.
+using PairHelper = void (*)(double* x, double* other);
+
+GPFD_AVX2_KERNEL void sinThenCos4Avx2(double* x, double* other) {
+  const auto both = expr::trig::sinCos(lanes::load(x));
+  lanes::store(x, both.sin);
+  lanes::store(other, both.cos);
+}
+GPFD_AVX2_KERNEL void cosThenSin4Avx2(double* x, double* other) {
+  const auto both = expr::trig::sinCos(lanes::load(x));
+  lanes::store(x, both.cos);
+  lanes::store(other, both.sin);
 }
 
 // The process-wide code runtime, never destroyed (code may be released during static
@@ -150,6 +166,7 @@ class Emitter {
       nextOutput_[k] = outputsAt_[p_.outputs[k]];
       outputsAt_[p_.outputs[k]] = static_cast<int>(k);
     }
+    findTrigPairs();
     pool_.assign(n, -1);
     int entries = kFixedCount;
     for (std::size_t i = 0; i < n; ++i) {
@@ -176,6 +193,30 @@ class Emitter {
     int reg = -1;
     int slot = -1;
   };
+
+  // In the batch kernel, sin(x) and cos(x) of the same value are computed by one call (the lane
+  // sine and cosine share their reduction: the same bits as two calls). partner_[v] = w: the call
+  // at v also computes w, the other one, later in the program; precomputed_[w] is then true.
+  void findTrigPairs() {
+    const std::size_t n = p_.code.size();
+    partner_.assign(n, -1);
+    precomputed_.assign(n, false);
+    if (!batch_) return;
+    std::vector<int> sinOf(n, -1), cosOf(n, -1);  // By operand: the first sin and cos of it.
+    for (std::size_t i = 0; i < n; ++i) {
+      const Instr& in = p_.code[i];
+      if (in.op != Op::Sin && in.op != Op::Cos) continue;
+      int& mine = (in.op == Op::Sin ? sinOf : cosOf)[in.a];
+      const int other = (in.op == Op::Sin ? cosOf : sinOf)[in.a];
+      if (mine >= 0) continue;  // Lowering shares sub-expressions, so this does not happen.
+      mine = static_cast<int>(i);
+      if (other >= 0 && partner_[static_cast<std::size_t>(other)] < 0 &&
+          !precomputed_[static_cast<std::size_t>(other)]) {
+        partner_[static_cast<std::size_t>(other)] = static_cast<int>(i);
+        precomputed_[i] = true;
+      }
+    }
+  }
 
   // ---- Function shells ----
 
@@ -319,10 +360,10 @@ class Emitter {
     }
   }
 
-  void spillToMemory(std::uint32_t v) {
-    Value& val = values_[v];
-    if (val.slot >= 0 || isConst(v)) return;
+  // A slot of the frame for value v.
+  void takeSlot(std::uint32_t v) {
     if (!frame_) throw NeedFrame{};
+    Value& val = values_[v];
     if (!freeSlots_.empty()) {
       val.slot = freeSlots_.back();
       freeSlots_.pop_back();
@@ -334,6 +375,12 @@ class Emitter {
       }
       val.slot = slotCount_++;
     }
+  }
+
+  void spillToMemory(std::uint32_t v) {
+    Value& val = values_[v];
+    if (val.slot >= 0 || isConst(v)) return;
+    takeSlot(v);
     store(slotMem(val.slot), val.reg);
   }
 
@@ -392,7 +439,9 @@ class Emitter {
           variable(v, in.var);
           break;
         default:
-          if (expr::isCall(in.op)) {
+          if (precomputed_[i]) {
+            takePrecomputed(v, in);
+          } else if (expr::isCall(in.op)) {
             call(v, in);
           } else if (expr::arity(in.op) == 1) {
             unary(v, in);
@@ -598,7 +647,15 @@ class Emitter {
     if (batch_) {
       a_.vzeroupper();
       a_.lea(x86::rdi, x86::ptr(x86::rsp, 0));
-      a_.mov(x86::rax, reinterpret_cast<std::uint64_t>(laneHelper(in.op)));
+      const int partner = partner_[v];
+      if (partner >= 0) {  // The partner's value goes straight into its slot.
+        takeSlot(static_cast<std::uint32_t>(partner));
+        a_.lea(x86::rsi, slotMem(values_[static_cast<std::size_t>(partner)].slot));
+        const PairHelper pair = in.op == Op::Sin ? sinThenCos4Avx2 : cosThenSin4Avx2;
+        a_.mov(x86::rax, reinterpret_cast<std::uint64_t>(pair));
+      } else {
+        a_.mov(x86::rax, reinterpret_cast<std::uint64_t>(laneHelper(in.op)));
+      }
       a_.call(x86::rax);
       a_.vmovupd(x86::ymm(0), x86::ptr(x86::rsp, 0));
     } else {
@@ -606,6 +663,12 @@ class Emitter {
       a_.call(x86::rax);
     }
     assign(v, 0);
+  }
+
+  // A sin or cos that its partner's call computed: its value waits in its slot.
+  void takePrecomputed(std::uint32_t v, const Instr& in) {
+    retire(in.a, v);
+    if (outputsAt_[v] >= 0) inRegister(v, 0);  // storeOutputs reads it from a register.
   }
 
   void storeOutputs(std::uint32_t v) {
@@ -648,7 +711,8 @@ class Emitter {
   bool calls_ = false;
   x86::Gp state_, out_;
   asmjit::Label poolLabel_, entryLabel_;
-  std::vector<int> outputsAt_, nextOutput_, pool_;
+  std::vector<int> outputsAt_, nextOutput_, pool_, partner_;
+  std::vector<bool> precomputed_;
   std::vector<Value> values_;
   int owner_[kValueRegs] = {};
   std::vector<int> freeSlots_;

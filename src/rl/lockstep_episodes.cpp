@@ -33,12 +33,8 @@ class LockstepPlayer final : public Player {
         outputs_(setup.runs.front().policy->outputs()),
         parameters_(static_cast<std::size_t>(setup.runs.front().policy->parameterCount())),
         normalise_(setup.runs.front().features->options().normalise),
-        state_(stateDim_ * stride_, 0.0),
-        action_(batch_->actionComponents() * stride_, 0.0),
-        reward_(stride_, 0.0),
-        elapsed_(stride_, 0),
-        terminated_(stride_, 0),
-        truncated_(stride_, 0),
+        store_(0, stride_, stateDim_, batch_->actionComponents()),
+        io_(store_.buffers()),
         rows_(stride_ * std::max(stateDim_, std::size_t{1}), 0.0),
         raw_(stride_ * std::max(rawDim_, std::size_t{1}), 0.0),
         phi_(dim_ * stride_, 1.0),  // The bias row, if any, stays 1.
@@ -54,16 +50,10 @@ class LockstepPlayer final : public Player {
         scale_(normalise_ ? rawDim_ * stride_ : 0, 1.0),
         weight_(stride_, 1.0),
         failed_(stride_, 0),
+        broken_(stride_, 0),
         episode_(stride_, 0),
         run_(stride_, 0),
         rngs_(stride_) {
-    io_.stride = stride_;
-    io_.state = state_.data();
-    io_.action = action_.data();
-    io_.elapsed = elapsed_.data();
-    io_.reward = reward_.data();
-    io_.terminated = terminated_.data();
-    io_.truncated = truncated_.data();
     io_.scratchTail = true;
     lanes_.stride = stride_;
     lanes_.avx2 = batch_->usesAvx2();
@@ -89,11 +79,7 @@ class LockstepPlayer final : public Player {
       lanes_.lanes = (active + 3) / 4 * 4;
       features(active, normalise_ ? &out.moments : nullptr);
       lockstep::linearOutputs(lanes_, weights_.data(), outputs_, dim_, phi_.data(), mu_.data());
-      for (std::size_t l = 0; l < active; ++l) {
-        for (std::size_t i = 0; i < outputs_ && !failed_[l]; ++i) {
-          if (!std::isfinite(mu_[i * stride_ + l])) failed_[l] = 1;
-        }
-      }
+      lockstep::flagNotFinite(lanes_, mu_.data(), outputs_, failed_.data());
       if (sampling) {
         sample(active);
       } else {
@@ -109,15 +95,9 @@ class LockstepPlayer final : public Player {
   // marks the lanes whose features are not finite. The map evaluates whole groups of four (the
   // JIT's AVX2 kernel; the rows beyond `active` hold old states and are ignored).
   void features(std::size_t active, std::vector<FeatureMoments>* moments) {
-    for (std::size_t i = 0; i < stateDim_; ++i) {
-      const double* from = state_.data() + i * stride_;
-      for (std::size_t l = 0; l < lanes_.lanes; ++l) rows_[l * stateDim_ + i] = from[l];
-    }
+    lockstep::toLaneMajor(lanes_, store_.state.data(), stateDim_, rows_.data());
     s_.map->evaluateBatch(rows_.data(), lanes_.lanes, raw_.data());
-    for (std::size_t j = 0; j < rawDim_; ++j) {
-      double* to = phi_.data() + j * stride_;
-      for (std::size_t l = 0; l < lanes_.lanes; ++l) to[l] = raw_[l * rawDim_ + j];
-    }
+    lockstep::fromLaneMajor(lanes_, raw_.data(), rawDim_, phi_.data());
     lockstep::checkAndNormalise(lanes_, phi_.data(), rawDim_, normalise_ ? shift_.data() : nullptr,
                                 scale_.data(), failed_.data());
     if (moments != nullptr) {
@@ -134,10 +114,12 @@ class LockstepPlayer final : public Player {
       const std::size_t weightCount = outputs_ * dim_;
       const bool learnStd = parameters_ > weightCount;
       for (std::size_t i = 0; i < outputs_; ++i) {
-        rngs_.standardNormal(active, eps_.data(), lanes_.avx2);
+        // With AVX2 the lanes up to the group of four draw too: the lanes beyond `active` hold
+        // no episode (a lane that starts one gets its stream anew), so their draws are unused.
+        rngs_.standardNormal(lanes_.avx2 ? lanes_.lanes : active, eps_.data(), lanes_.avx2);
         lockstep::gaussianActions(
             lanes_, mu_.data() + i * stride_, eps_.data(), sd_.data() + i * stride_,
-            policy.centre(i), policy.halfWidth(i), action_.data() + i * stride_,
+            policy.centre(i), policy.halfWidth(i), store_.action.data() + i * stride_,
             coefficient_.data(),
             learnStd ? eligibility_.data() + (weightCount + i) * stride_ : nullptr);
         lockstep::addGradient(lanes_, eligibility_.data(), i * dim_, coefficient_.data(),
@@ -145,13 +127,13 @@ class LockstepPlayer final : public Player {
       }
       for (std::size_t l = 0; l < active; ++l) {
         if (!failed_[l]) continue;
-        for (std::size_t i = 0; i < outputs_; ++i) action_[i * stride_ + l] = 0.0;
+        for (std::size_t i = 0; i < outputs_; ++i) store_.action[i * stride_ + l] = 0.0;
       }
       return;
     }
     for (std::size_t l = 0; l < active; ++l) {
       if (failed_[l]) {
-        action_[l] = 0.0;
+        store_.action[l] = 0.0;
         continue;
       }
       for (std::size_t k = 0; k < outputs_; ++k) logits_[k] = mu_[k * stride_ + l];
@@ -159,7 +141,7 @@ class LockstepPlayer final : public Player {
       const std::size_t choice =
           s_.runs[run_[l]].policy->drawChoice(logits_.data(), rng, choiceCoefficient_.data());
       rngs_.set(l, rng);
-      action_[l] = static_cast<double>(choice);
+      store_.action[l] = static_cast<double>(choice);
       for (std::size_t k = 0; k < outputs_; ++k) {
         double* g = eligibility_.data() + k * dim_ * stride_ + l;
         for (std::size_t j = 0; j < dim_; ++j) {
@@ -175,7 +157,7 @@ class LockstepPlayer final : public Player {
     for (std::size_t l = 0; l < active; ++l) {
       if (policy.continuous()) {
         for (std::size_t i = 0; i < outputs_; ++i) {
-          action_[i * stride_ + l] =
+          store_.action[i * stride_ + l] =
               failed_[l] ? 0.0 : policy.centre(i) + policy.halfWidth(i) * mu_[i * stride_ + l];
         }
         continue;
@@ -184,13 +166,17 @@ class LockstepPlayer final : public Player {
       for (std::size_t k = 1; k < outputs_ && !failed_[l]; ++k) {
         if (mu_[k * stride_ + l] > mu_[best * stride_ + l]) best = k;
       }
-      action_[l] = static_cast<double>(best);
+      store_.action[l] = static_cast<double>(best);
     }
   }
 
   // Books the step of every lane, retires the episodes that ended and compacts the lanes.
   // Returns the number of lanes still running.
   std::size_t finish(std::size_t active, bool sampling, Records& out) {
+    // As the sequential player checks: a reward or state variable that is not finite.
+    std::fill(broken_.begin(), broken_.begin() + static_cast<std::ptrdiff_t>(lanes_.lanes), 0);
+    lockstep::flagNotFinite(lanes_, store_.reward.data(), 1, broken_.data(), store_.state.data(),
+                            stateDim_);
     for (std::size_t l = active; l-- > 0;) {
       Outcome& outcome = out.outcomes[episode_[l]];
       bool done = true;
@@ -198,14 +184,14 @@ class LockstepPlayer final : public Player {
         outcome.ok = false;
       } else {
         ++outcome.steps;
-        const double r = reward_[l];
-        if (!std::isfinite(r) || !stateFinite(l)) {  // As the sequential player checks.
+        const double r = store_.reward[l];
+        if (broken_[l]) {
           outcome.ok = false;
         } else {
           outcome.undiscounted += r;
           outcome.discounted += weight_[l] * r;
           weight_[l] *= s_.discount;
-          done = terminated_[l] || truncated_[l] || outcome.steps >= s_.maxSteps;
+          done = store_.terminated[l] || store_.truncated[l] || outcome.steps >= s_.maxSteps;
         }
       }
       if (!done) continue;
@@ -214,13 +200,6 @@ class LockstepPlayer final : public Player {
       --active;
     }
     return active;
-  }
-
-  bool stateFinite(std::size_t lane) const {
-    for (std::size_t i = 0; i < stateDim_; ++i) {
-      if (!std::isfinite(state_[i * stride_ + lane])) return false;
-    }
-    return true;
   }
 
   void retire(std::size_t lane, Eigen::VectorXd& eligibility, Outcome& outcome) {
@@ -241,8 +220,8 @@ class LockstepPlayer final : public Player {
     }
     if (from == to) return;
     for (std::size_t i = 0; i < stateDim_; ++i)
-      state_[i * stride_ + to] = state_[i * stride_ + from];
-    elapsed_[to] = elapsed_[from];
+      store_.state[i * stride_ + to] = store_.state[i * stride_ + from];
+    store_.elapsed[to] = store_.elapsed[from];
     weight_[to] = weight_[from];
     episode_[to] = episode_[from];
     run_[to] = run_[from];
@@ -280,17 +259,15 @@ class LockstepPlayer final : public Player {
   std::unique_ptr<env::BatchEnvironment> batch_;
   std::size_t capacity_, stride_, stateDim_, rawDim_, dim_, outputs_, parameters_;
   bool normalise_;
-  lockstep::Rows lanes_;  // The lane rows as the kernels see them.
-  // Lanes: structure of arrays, `stride_` apart.
-  std::vector<double> state_, action_, reward_;
-  std::vector<std::int32_t> elapsed_;
-  std::vector<std::uint8_t> terminated_, truncated_;
-  env::BatchBuffers io_;
+  lockstep::Rows lanes_;     // The lane rows as the kernels see them.
+  env::BatchStorage store_;  // The environment's lanes: structure of arrays, `stride_` apart.
+  env::BatchBuffers& io_;
   std::vector<double> rows_, raw_;  // States and raw features, one row per lane (the map's layout).
   std::vector<double> phi_, mu_, eps_, coefficient_, choiceCoefficient_, logits_, eligibility_;
   std::vector<double> weights_, sd_, shift_, scale_;  // Each lane's run's parameters.
   std::vector<double> weight_;                        // Discount weight of the next reward.
   std::vector<std::uint8_t> failed_;
+  std::vector<std::uint8_t> broken_;  // A step's reward or state is not finite.
   std::vector<std::size_t> episode_;  // The episode (index into the call's tasks) of each lane.
   std::vector<std::size_t> run_;      // Its run.
   RngLanes rngs_;                     // Each lane's episode's stream.

@@ -21,6 +21,16 @@ struct Rows {
 void checkAndNormalise(const Rows& rows, double* phi, std::size_t dim, const double* shift,
                        const double* scale, std::uint8_t* failed);
 
+// flags[l] = 1 where a value of lane l in rows [0, count) of `values` or rows [0, count2) of
+// `values2` is not finite; other flags are left as they are.
+void flagNotFinite(const Rows& rows, const double* values, std::size_t count, std::uint8_t* flags,
+                   const double* values2 = nullptr, std::size_t count2 = 0);
+
+// Between the lane rows (structure of arrays: variable i of lane l at soa[i * stride + l]) and
+// one row per lane (aos[l * dim + i]), for lanes [0, rows.lanes).
+void toLaneMajor(const Rows& rows, const double* soa, std::size_t dim, double* aos);
+void fromLaneMajor(const Rows& rows, const double* aos, std::size_t dim, double* soa);
+
 // mu rows i < outputs = sum over j in order of w rows (i * dim + j) times phi rows j
 // (LinearPolicy's outputs).
 void linearOutputs(const Rows& rows, const double* w, std::size_t outputs, std::size_t dim,

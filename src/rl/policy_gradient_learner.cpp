@@ -98,7 +98,7 @@ class PolicyGradientLearner final : public Learner {
                                        const features::FeatureMap& map, std::span<Rng> rngs,
                                        const RunPointCallback& onPoint) const override {
     const auto env = makeEnv();
-    if (!config_.lockstep || !env::makeBatchEnvironment(*env)) {
+    if (!config_.lockstep || !env::hasBatchEnvironment(*env)) {
       return Learner::trainRuns(makeEnv, map, rngs, onPoint);
     }
     PolicyGradientConfig config = config_;

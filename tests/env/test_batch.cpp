@@ -4,6 +4,7 @@
 // count of a partial group; the AVX2 and the one-lane-at-a-time paths.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -49,6 +50,7 @@ std::string describe(const Case& c) {
 std::vector<BatchIsa> isas() {
   std::vector<BatchIsa> out{BatchIsa::Scalar};
   if (cpuHasAvx2()) out.push_back(BatchIsa::Avx2);
+  if (cpuHasAvx512()) out.push_back(BatchIsa::Avx512);
   return out;
 }
 
@@ -57,31 +59,17 @@ bool sameBits(double a, double b) {
          (std::isnan(a) && std::isnan(b));
 }
 
-// A batch of `lanes` lanes with a stride larger than needed (rows must not touch each other).
-struct Lanes {
+// A batch of `lanes` lanes with a stride larger than needed (rows must not touch each other), the
+// outputs filled with values that no step writes.
+struct Lanes : BatchStorage {
   Lanes(std::size_t lanes, std::size_t stateDim, std::size_t components)
-      : stride(lanes + 3),
-        state(stateDim * stride, 0.0),
-        action(components * stride, 0.0),
-        elapsed(stride, 0),
-        reward(stride, -7.0),
-        terminated(stride, 9),
-        truncated(stride, 9) {
-    io.lanes = lanes;
-    io.stride = stride;
-    io.state = state.data();
-    io.action = action.data();
-    io.elapsed = elapsed.data();
-    io.reward = reward.data();
-    io.terminated = terminated.data();
-    io.truncated = truncated.data();
+      : BatchStorage(lanes, lanes + 3, stateDim, components), stride(lanes + 3), io(buffers()) {
+    std::fill(reward.begin(), reward.end(), -7.0);
+    std::fill(terminated.begin(), terminated.end(), 9);
+    std::fill(truncated.begin(), truncated.end(), 9);
   }
   std::size_t stride;
-  std::vector<double> state, action;
-  std::vector<std::int32_t> elapsed;
-  std::vector<double> reward;
-  std::vector<std::uint8_t> terminated, truncated;
-  BatchBuffers io;
+  BatchBuffers& io;
 };
 
 // A random action component: mostly legal, sometimes out of bounds or NaN (continuous).
@@ -113,10 +101,11 @@ TEST_P(BatchVsScalar, SingleStepsFromRandomStatesMatchBitForBit) {
     const auto scalar = Registry::global().make(c.env, c.params);
     const auto batch = makeBatchEnvironment(*scalar, GetParam());
     ASSERT_NE(batch, nullptr);
-    EXPECT_EQ(batch->usesAvx2(), GetParam() == BatchIsa::Avx2);
+    EXPECT_EQ(batch->isa(), GetParam());
+    EXPECT_EQ(batch->usesAvx2(), GetParam() != BatchIsa::Scalar);
     const std::size_t dim = scalar->stateDim();
     const ActionSpace space = scalar->actionSpace();
-    for (std::size_t lanes = 1; lanes <= 9; ++lanes) {
+    for (std::size_t lanes = 1; lanes <= 19; ++lanes) {
       Lanes b(lanes, dim, space.components);
       std::vector<std::vector<double>> states(lanes), actions(lanes);
       for (std::size_t l = 0; l < lanes; ++l) {
@@ -161,7 +150,7 @@ TEST_P(BatchVsScalar, TrajectoriesWithResetsMatchBitForBit) {
     SCOPED_TRACE(describe(c));
     const auto proto = Registry::global().make(c.env, c.params);
     const auto batch = makeBatchEnvironment(*proto, GetParam());
-    const std::size_t lanes = 6, dim = proto->stateDim();
+    const std::size_t lanes = 13, dim = proto->stateDim();  // 8 + 4 + 1: every group size.
     const ActionSpace space = proto->actionSpace();
     Lanes b(lanes, dim, space.components);
     std::vector<std::unique_ptr<Environment>> envs;
@@ -202,7 +191,9 @@ TEST_P(BatchVsScalar, TrajectoriesWithResetsMatchBitForBit) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Isa, BatchVsScalar, ::testing::ValuesIn(isas()), [](const auto& param) {
-  return std::string(param.param == BatchIsa::Avx2 ? "Avx2" : "Scalar");
+  return std::string(param.param == BatchIsa::Avx512 ? "Avx512"
+                     : param.param == BatchIsa::Avx2 ? "Avx2"
+                                                     : "Scalar");
 });
 
 TEST(Batch, DiscreteActionOutsideTheChoicesIsAnInputErrorBeforeAnyLaneMoves) {
@@ -217,12 +208,20 @@ TEST(Batch, DiscreteActionOutsideTheChoicesIsAnInputErrorBeforeAnyLaneMoves) {
 }
 
 TEST(Batch, OnlyEnvironmentsWithABatchedFormHaveOne) {
-  EXPECT_EQ(makeBatchEnvironment(*Registry::global().make("tetris")), nullptr);
+  const auto tetris = Registry::global().make("tetris");
+  EXPECT_EQ(makeBatchEnvironment(*tetris), nullptr);
+  EXPECT_FALSE(hasBatchEnvironment(*tetris));
   EXPECT_THROW(makeBatchEnvironment("tetris", {}), InputError);
   Swimmer reference(SwimmerConfig{.segments = 4});
+  EXPECT_TRUE(hasBatchEnvironment(reference));
   reference.setReferenceSolver(true);
   EXPECT_EQ(makeBatchEnvironment(reference), nullptr);
+  EXPECT_FALSE(hasBatchEnvironment(reference));
   EXPECT_THROW(makeBatchEnvironment("swimmer", {{"segments", "9"}}), InputError);  // No kernel.
+  EXPECT_FALSE(hasBatchEnvironment(*Registry::global().make("swimmer", {{"segments", "9"}})));
+  for (const Case& c : cases()) {
+    EXPECT_TRUE(hasBatchEnvironment(*Registry::global().make(c.env, c.params))) << describe(c);
+  }
 }
 
 }  // namespace

@@ -20,13 +20,13 @@ inline double wrapAngle(double x) {
   return x;
 }
 
-// The same on four lanes, bit for bit: one turn of the loop for every lane, and the scalar
+// The same on four or eight lanes, bit for bit: one turn of the loop for every lane, and the scalar
 // function for the rare lanes that need more (or are far out, inf or NaN).
-inline lanes::Lanes4 wrapAngle(lanes::Lanes4 x) {
+template <lanes::LaneType L>
+L wrapAngle(L x) {
   constexpr double lo = -std::numbers::pi, hi = std::numbers::pi, period = hi - lo;
-  using lanes::Lanes4;
-  const Lanes4 once = lanes::select(x > hi, x - period, lanes::select(x < lo, x + period, x));
-  const lanes::Mask4 rest = once > hi || once < lo || !(lanes::abs(x) <= 64 * period);
+  const L once = lanes::select(x > hi, x - period, lanes::select(x < lo, x + period, x));
+  const lanes::MaskOf<L> rest = once > hi || once < lo || !(lanes::abs(x) <= 64 * period);
   if (!lanes::anyOf(rest)) return once;
   return lanes::patchLanes(rest, x, once, [](double v) { return wrapAngle(v); });
 }

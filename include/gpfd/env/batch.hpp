@@ -8,14 +8,16 @@
 //
 // Every lane gives, bit for bit, what the scalar environment's step() gives from the same state,
 // step count and action: both run the same dynamics templates (cartpole_dynamics.hpp, ...), on
-// four lanes at a time with AVX2 where the CPU has it (util/cpu.hpp), one lane at a time
-// otherwise. tests/env/test_batch.cpp checks it on random states and actions, both ways.
+// eight lanes at a time with AVX-512 or four with AVX2 where the CPU has them (util/cpu.hpp), one
+// lane at a time otherwise. tests/env/test_batch.cpp checks it on random states and actions, every
+// way.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "gpfd/env/environment.hpp"
 #include "gpfd/util/rng.hpp"
@@ -37,9 +39,32 @@ struct BatchBuffers {
   bool scratchTail = false;
 };
 
-// How lanes are computed: Auto takes AVX2 where cpuHasAvx2(), Scalar one lane at a time (the
-// fallback, and for tests), Avx2 insists (std::invalid_argument where the CPU lacks it).
-enum class BatchIsa { Auto, Avx2, Scalar };
+// Owns the buffers of a batch: rows of `stride` for `lanes` lanes, zero-filled, and the
+// BatchBuffers that point into them (its `lanes` and `scratchTail` may be changed between steps).
+// Neither copied nor moved, so that the pointers stay valid.
+class BatchStorage {
+ public:
+  BatchStorage(std::size_t lanes, std::size_t stride, std::size_t stateDim,
+               std::size_t actionComponents);
+  BatchStorage(const BatchStorage&) = delete;
+  BatchStorage& operator=(const BatchStorage&) = delete;
+
+  BatchBuffers& buffers() { return io_; }
+  const BatchBuffers& buffers() const { return io_; }
+
+  std::vector<double> state, action, reward;
+  std::vector<std::int32_t> elapsed;
+  std::vector<std::uint8_t> terminated, truncated;
+
+ private:
+  BatchBuffers io_;
+};
+
+// How lanes are computed: Auto takes the widest the CPU offers (util/cpu.hpp), Scalar one lane at
+// a time (the fallback, and for tests); Avx2 (four lanes per instruction) and Avx512 (cart-pole and
+// Acrobot eight lanes per instruction, the swimmer four) insist (std::invalid_argument where the
+// CPU lacks them).
+enum class BatchIsa { Auto, Avx512, Avx2, Scalar };
 
 class BatchEnvironment {
  public:
@@ -49,7 +74,10 @@ class BatchEnvironment {
   const Environment& scalar() const { return *scalar_; }
   std::size_t stateDim() const { return scalar_->stateDim(); }
   std::size_t actionComponents() const { return scalar_->actionSpace().components; }
-  bool usesAvx2() const { return avx2_; }
+  // The instruction set in use (resolved: Avx512, Avx2 or Scalar). usesAvx2(): AVX2 at least, so
+  // that lane kernels of util/lanes.hpp marked GPFD_AVX2_KERNEL may run.
+  BatchIsa isa() const { return isa_; }
+  bool usesAvx2() const { return isa_ != BatchIsa::Scalar; }
 
   // Starts an episode in lane `lane`: its state is drawn from `rng` exactly as scalar().reset
   // draws it, and elapsed[lane] = 0.
@@ -59,13 +87,13 @@ class BatchEnvironment {
   virtual void step(const BatchBuffers& io) const = 0;
 
  protected:
-  // `isa` must be resolved (Avx2 or Scalar).
+  // `isa` must be resolved (Avx512, Avx2 or Scalar).
   BatchEnvironment(std::unique_ptr<Environment> scalar, BatchIsa isa)
-      : scalar_(std::move(scalar)), avx2_(isa == BatchIsa::Avx2) {}
+      : scalar_(std::move(scalar)), isa_(isa) {}
 
  private:
   std::unique_ptr<Environment> scalar_;
-  bool avx2_;
+  BatchIsa isa_;
 };
 
 // The batched form of `env` (a copy of its parameters), or nullptr when it has none: cart-pole
@@ -73,6 +101,8 @@ class BatchEnvironment {
 // reference solver off). Tetris has none (its learner evaluates afterstates in bulk instead).
 std::unique_ptr<BatchEnvironment> makeBatchEnvironment(const Environment& env,
                                                        BatchIsa isa = BatchIsa::Auto);
+// Whether makeBatchEnvironment(env) gives a batched form; cheap (nothing is made).
+bool hasBatchEnvironment(const Environment& env);
 // The same by registry name and parameters (Python's vector environment); InputError when the
 // environment has no batched form.
 std::unique_ptr<BatchEnvironment> makeBatchEnvironment(const std::string& name,

@@ -1,5 +1,5 @@
-// expr: gpfd's sine and cosine (trig.hpp) on four lanes at once, bit-identical lane by lane to
-// trig::sin and trig::cos: both are written once, below, as templates over the number type
+// expr: gpfd's sine and cosine (trig.hpp) on four or eight lanes at once, bit-identical lane by
+// lane to trig::sin and trig::cos: both are written once, below, as templates over the number type
 // (util/lanes.hpp), and the lane version replaces the branches of the scalar one by selects.
 // Lanes beyond kLargeArgument (and inf, NaN) call the scalar function, as it calls the C library.
 #pragma once
@@ -49,24 +49,24 @@ T cosKernel(T r, T y) {
 
 }  // namespace detail
 
-// sin and cos of four arguments from one reduction.
-inline SinCos<lanes::Lanes4> sinCos(lanes::Lanes4 x) {
-  using lanes::Lanes4;
-  using lanes::Mask4;
-  const Lanes4 a = lanes::abs(x);
-  const Mask4 tiny = a < Lanes4(kTiny);
-  const Mask4 large = !(a <= Lanes4(kLargeArgument));  // Or NaN.
-  const detail::Reduction<Lanes4> red = detail::reduce(x);
-  const Lanes4 s = detail::sinKernel(red.r, red.y), c = detail::cosKernel(red.r, red.y);
+// sin and cos of four (Lanes4) or eight (Lanes8) arguments from one reduction.
+template <lanes::LaneType L>
+SinCos<L> sinCos(L x) {
+  using M = lanes::MaskOf<L>;
+  const L a = lanes::abs(x);
+  const M tiny = a < L(kTiny);
+  const M large = !(a <= L(kLargeArgument));  // Or NaN.
+  const detail::Reduction<L> red = detail::reduce(x);
+  const L s = detail::sinKernel(red.r, red.y), c = detail::cosKernel(red.r, red.y);
   // Quadrant q = k mod 4: sin x = (q odd ? cos r : sin r), negated for q = 2, 3; cos x is sin of
   // quadrant q + 1.
-  const lanes::RawMask q = lanes::bitsOf(red.shifted);
-  const Mask4 odd{(q & 1) != 0};
-  const Lanes4 sinAbs = lanes::select(odd, c, s), cosAbs = lanes::select(odd, s, c);
-  SinCos<Lanes4> out{lanes::select(Mask4{(q & 2) != 0}, -sinAbs, sinAbs),
-                     lanes::select(Mask4{((q + 1) & 2) != 0}, -cosAbs, cosAbs)};
+  const auto q = lanes::bitsOf(red.shifted);
+  const M odd{(q & 1) != 0};
+  const L sinAbs = lanes::select(odd, c, s), cosAbs = lanes::select(odd, s, c);
+  SinCos<L> out{lanes::select(M{(q & 2) != 0}, -sinAbs, sinAbs),
+                lanes::select(M{((q + 1) & 2) != 0}, -cosAbs, cosAbs)};
   out.sin = lanes::select(tiny, x, out.sin);
-  out.cos = lanes::select(tiny, Lanes4(1.0), out.cos);
+  out.cos = lanes::select(tiny, L(1.0), out.cos);
   if (lanes::anyOf(large)) {
     out.sin = lanes::patchLanes(large, x, out.sin, [](double v) { return sin(v); });
     out.cos = lanes::patchLanes(large, x, out.cos, [](double v) { return cos(v); });
@@ -74,7 +74,13 @@ inline SinCos<lanes::Lanes4> sinCos(lanes::Lanes4 x) {
   return out;
 }
 
-inline lanes::Lanes4 sin(lanes::Lanes4 x) { return sinCos(x).sin; }
-inline lanes::Lanes4 cos(lanes::Lanes4 x) { return sinCos(x).cos; }
+template <lanes::LaneType L>
+L sin(L x) {
+  return sinCos(x).sin;
+}
+template <lanes::LaneType L>
+L cos(L x) {
+  return sinCos(x).cos;
+}
 
 }  // namespace gpfd::expr::trig

@@ -13,4 +13,9 @@ bool sse2OnlyRequested();
 // system support AVX2, and sse2OnlyRequested() is false. Computed once.
 bool cpuHasAvx2();
 
+// Whether functions marked GPFD_AVX512_KERNEL (util/lanes.hpp) may run: cpuHasAvx2(), and the CPU
+// and the operating system support AVX-512 F, DQ and VL, and GPFD_NO_AVX512=1 is not set (to run
+// the AVX2 paths on such a CPU). Computed once.
+bool cpuHasAvx512();
+
 }  // namespace gpfd

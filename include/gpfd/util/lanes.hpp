@@ -1,33 +1,41 @@
-// util: four doubles side by side, for numerical code written once as a template over its number
-// type: `double` for one lane, `Lanes4` for four. Every Lanes4 operation is the IEEE operation of
-// `double` lane by lane (no fused multiply-add: the project compiles with -ffp-contract=off, and
-// the AVX2 target has no FMA), so a template gives in each lane the bits it gives with double.
+// util: doubles side by side, for numerical code written once as a template over its number type:
+// `double` for one lane, `Lanes4` for four, `Lanes8` for eight. Every lane operation is the IEEE
+// operation of `double` lane by lane (no fused multiply-add: the project compiles with
+// -ffp-contract=off), so a template gives in each lane the bits it gives with double.
 //
-// Lanes4 uses the GCC/Clang vector extension, not intrinsics, so templates over it compile in any
-// function. Inside a function marked GPFD_AVX2_KERNEL (target AVX2, everything inlined into it)
-// they become 256-bit AVX instructions; elsewhere SSE2 pairs. Such a function must only run where
-// cpuHasAvx2() (util/cpu.hpp) is true.
+// The lane types use the GCC/Clang vector extension, not intrinsics, so templates over them
+// compile in any function. Inside a function marked GPFD_AVX2_KERNEL (target AVX2, everything
+// inlined into it) Lanes4 operations become 256-bit AVX instructions; elsewhere SSE2 pairs. Such a
+// function must only run where cpuHasAvx2() (util/cpu.hpp) is true. Lanes8 is meant for functions
+// marked GPFD_AVX512_KERNEL (one 512-bit instruction per operation, 32 vector registers), which
+// must only run where cpuHasAvx512(): eight lanes in one chain of operations hide its latency
+// better than two groups of four one after the other.
 #pragma once
 
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 
 #if defined(__x86_64__)
 #define GPFD_AVX2_KERNEL __attribute__((target("avx2"), flatten))
+#define GPFD_AVX512_KERNEL __attribute__((target("avx2,avx512f,avx512dq,avx512vl"), flatten))
 #else
 #define GPFD_AVX2_KERNEL __attribute__((flatten))
+#define GPFD_AVX512_KERNEL __attribute__((flatten))
 #endif
 
 namespace gpfd::lanes {
 
 using RawLanes = double __attribute__((vector_size(32)));
 using RawMask = std::int64_t __attribute__((vector_size(32)));
+using RawLanes8 = double __attribute__((vector_size(64)));
+using RawMask8 = std::int64_t __attribute__((vector_size(64)));
 
-// The two types are laid out with AVX enabled: GCC fixes a struct's machine mode when it lays it
-// out, and a struct laid out for SSE2 only would be copied in 16-byte pieces inside AVX2 code
-// (store-forwarding stalls on every copy).
+// The types are laid out with the instruction set they are used with: GCC fixes a struct's
+// machine mode when it lays it out, and a struct laid out for SSE2 only would be copied in 16-byte
+// pieces inside AVX code (store-forwarding stalls on every copy).
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #pragma GCC push_options
 #pragma GCC target("avx2")
@@ -49,83 +57,143 @@ struct Lanes4 {
 };
 
 #ifdef GPFD_LANES_POP_OPTIONS
+#pragma GCC target("avx2,avx512f,avx512dq,avx512vl")
+#endif
+
+struct Mask8 {
+  RawMask8 bits;
+};
+
+struct Lanes8 {
+  RawLanes8 v;
+
+  Lanes8() = default;
+  Lanes8(double x) : v{x, x, x, x, x, x, x, x} {}  // NOLINT(google-explicit-constructor)
+  explicit Lanes8(RawLanes8 raw) : v(raw) {}
+};
+
+#ifdef GPFD_LANES_POP_OPTIONS
 #pragma GCC pop_options
 #undef GPFD_LANES_POP_OPTIONS
 #endif
 
-inline Lanes4 load(const double* p) {
-  RawLanes v;
-  std::memcpy(&v, p, sizeof v);
-  return Lanes4(v);
-}
-inline void store(double* p, Lanes4 x) { std::memcpy(p, &x.v, sizeof x.v); }
-inline void store(double* p, double x) { *p = x; }
-// The lanes of T at p: one double, or four consecutive ones.
+// Lanes per value of T: 1 for double, 4 for Lanes4, 8 for Lanes8.
+template <class T>
+inline constexpr std::size_t kWidth = sizeof(T) / sizeof(double);
+
+template <class T>
+concept LaneType = std::is_same_v<T, Lanes4> || std::is_same_v<T, Lanes8>;
+template <class T>
+concept MaskType = std::is_same_v<T, Mask4> || std::is_same_v<T, Mask8>;
+
+// The mask type of T: bool for double, Mask4 for Lanes4, Mask8 for Lanes8.
+template <class T>
+struct MaskOfT {
+  using type = bool;
+};
+template <>
+struct MaskOfT<Lanes4> {
+  using type = Mask4;
+};
+template <>
+struct MaskOfT<Lanes8> {
+  using type = Mask8;
+};
+template <class T>
+using MaskOf = typename MaskOfT<T>::type;
+
+// The lanes of T at p: one double, or kWidth<T> consecutive ones.
 template <class T>
 T loadAs(const double* p) {
   if constexpr (sizeof(T) == sizeof(double)) {
     return *p;
   } else {
-    return load(p);
+    decltype(T{}.v) v;
+    std::memcpy(&v, p, sizeof v);
+    return T(v);
   }
 }
-
-inline Lanes4 operator+(Lanes4 a, Lanes4 b) { return Lanes4(a.v + b.v); }
-inline Lanes4 operator-(Lanes4 a, Lanes4 b) { return Lanes4(a.v - b.v); }
-inline Lanes4 operator*(Lanes4 a, Lanes4 b) { return Lanes4(a.v * b.v); }
-inline Lanes4 operator/(Lanes4 a, Lanes4 b) { return Lanes4(a.v / b.v); }
-inline Lanes4 operator-(Lanes4 a) { return Lanes4(-a.v); }
-inline Lanes4& operator+=(Lanes4& a, Lanes4 b) { return a = a + b; }
-inline Lanes4& operator-=(Lanes4& a, Lanes4 b) { return a = a - b; }
-inline Lanes4& operator*=(Lanes4& a, Lanes4 b) { return a = a * b; }
-
-inline Mask4 operator<(Lanes4 a, Lanes4 b) { return {a.v < b.v}; }
-inline Mask4 operator>(Lanes4 a, Lanes4 b) { return {a.v > b.v}; }
-inline Mask4 operator<=(Lanes4 a, Lanes4 b) { return {a.v <= b.v}; }
-inline Mask4 operator>=(Lanes4 a, Lanes4 b) { return {a.v >= b.v}; }
-inline Mask4 operator==(Lanes4 a, Lanes4 b) { return {a.v == b.v}; }
-inline Mask4 operator||(Mask4 a, Mask4 b) { return {a.bits | b.bits}; }
-inline Mask4 operator&&(Mask4 a, Mask4 b) { return {a.bits & b.bits}; }
-inline Mask4 operator!(Mask4 a) { return {~a.bits}; }
-
-// Per lane: mask ? a : b.
-inline Lanes4 select(Mask4 mask, Lanes4 a, Lanes4 b) {
-  return Lanes4((RawLanes)(((RawMask)a.v & mask.bits) | ((RawMask)b.v & ~mask.bits)));
+inline Lanes4 load(const double* p) { return loadAs<Lanes4>(p); }
+template <LaneType L>
+void store(double* p, L x) {
+  std::memcpy(p, &x.v, sizeof x.v);
 }
-inline bool anyOf(Mask4 m) { return (m.bits[0] | m.bits[1] | m.bits[2] | m.bits[3]) != 0; }
+inline void store(double* p, double x) { *p = x; }
+
+// The arithmetic and comparisons of lane type L with mask type M, as plain functions (not
+// templates) so that a double operand is broadcast implicitly.
+#define GPFD_LANES_OPERATORS(L, M)                            \
+  inline L operator+(L a, L b) { return L(a.v + b.v); }       \
+  inline L operator-(L a, L b) { return L(a.v - b.v); }       \
+  inline L operator*(L a, L b) { return L(a.v * b.v); }       \
+  inline L operator/(L a, L b) { return L(a.v / b.v); }       \
+  inline L operator-(L a) { return L(-a.v); }                 \
+  inline L& operator+=(L& a, L b) { return a = a + b; }       \
+  inline L& operator-=(L& a, L b) { return a = a - b; }       \
+  inline L& operator*=(L& a, L b) { return a = a * b; }       \
+  inline M operator<(L a, L b) { return {a.v < b.v}; }        \
+  inline M operator>(L a, L b) { return {a.v > b.v}; }        \
+  inline M operator<=(L a, L b) { return {a.v <= b.v}; }      \
+  inline M operator>=(L a, L b) { return {a.v >= b.v}; }      \
+  inline M operator==(L a, L b) { return {a.v == b.v}; }      \
+  inline M operator||(M a, M b) { return {a.bits | b.bits}; } \
+  inline M operator&&(M a, M b) { return {a.bits & b.bits}; } \
+  inline M operator!(M a) { return {~a.bits}; }
+
+GPFD_LANES_OPERATORS(Lanes4, Mask4)
+GPFD_LANES_OPERATORS(Lanes8, Mask8)
+#undef GPFD_LANES_OPERATORS
+
+// The bits of each lane as an integer.
+template <LaneType L>
+auto bitsOf(L a) {
+  return (decltype(MaskOf<L>{}.bits))a.v;
+}
+// Per lane: mask ? a : b.
+template <LaneType L>
+L select(MaskOf<L> mask, L a, L b) {
+  return L((decltype(a.v))((bitsOf(a) & mask.bits) | (bitsOf(b) & ~mask.bits)));
+}
+template <LaneType L>
+MaskOf<L> isNan(L a) {
+  return {a.v != a.v};
+}
+// |a|: the sign bit cleared, as std::fabs does.
+template <LaneType L>
+L abs(L a) {
+  return L((decltype(a.v))(bitsOf(a) & INT64_MAX));
+}
 // Bit j set when lane j of the mask is true.
-inline unsigned bitsOf(Mask4 m) {
-  return (m.bits[0] != 0 ? 1u : 0u) | (m.bits[1] != 0 ? 2u : 0u) | (m.bits[2] != 0 ? 4u : 0u) |
-         (m.bits[3] != 0 ? 8u : 0u);
+template <MaskType M>
+unsigned bitsOf(M m) {
+  unsigned bits = 0;
+  for (std::size_t j = 0; j < sizeof m.bits / sizeof m.bits[0]; ++j) {
+    bits |= (m.bits[j] != 0 ? 1u : 0u) << j;
+  }
+  return bits;
+}
+template <MaskType M>
+bool anyOf(M m) {
+  return bitsOf(m) != 0;
 }
 // `value` with f(x) in the lanes where `which` is true. For rare lanes: it goes through memory
 // (indexing a lane by a variable would keep the values in memory everywhere).
-template <class F>
-Lanes4 patchLanes(Mask4 which, Lanes4 x, Lanes4 value, F&& f) {
+template <LaneType L, class F>
+L patchLanes(MaskOf<L> which, L x, L value, F&& f) {
   const unsigned lanes = bitsOf(which);
-  double in[4], out[4];
+  double in[kWidth<L>], out[kWidth<L>];
   store(in, x);
   store(out, value);
-  for (int j = 0; j < 4; ++j) {
+  for (std::size_t j = 0; j < kWidth<L>; ++j) {
     if (lanes & (1u << j)) out[j] = f(in[j]);
   }
-  return load(out);
-}
-inline Mask4 isNan(Lanes4 a) { return {a.v != a.v}; }
-// |a|: the sign bit cleared, as std::fabs does.
-inline Lanes4 abs(Lanes4 a) {
-  return Lanes4((RawLanes)((RawMask)a.v & RawMask{INT64_MAX, INT64_MAX, INT64_MAX, INT64_MAX}));
+  return loadAs<L>(out);
 }
 // std::clamp(a, lo, hi) lane by lane: a < lo ? lo : (hi < a ? hi : a) (NaN stays NaN).
-inline Lanes4 clamp(Lanes4 a, double lo, double hi) {
-  return select(a < Lanes4(lo), Lanes4(lo), select(Lanes4(hi) < a, Lanes4(hi), a));
+template <LaneType L>
+L clamp(L a, double lo, double hi) {
+  return select(a < L(lo), L(lo), select(L(hi) < a, L(hi), a));
 }
-// The bits of each lane as an integer.
-inline RawMask bitsOf(Lanes4 a) { return (RawMask)a.v; }
-
-// Lanes per value of T: 1 for double, 4 for Lanes4.
-template <class T>
-inline constexpr std::size_t kWidth = sizeof(T) / sizeof(double);
 
 // The same operations on one double, so that templates read the same for both types.
 inline double select(bool mask, double a, double b) { return mask ? a : b; }
@@ -135,25 +203,13 @@ inline bool isNan(double a) { return a != a; }
 inline double abs(double a) { return std::fabs(a); }
 inline double clamp(double a, double lo, double hi) { return a < lo ? lo : (hi < a ? hi : a); }
 
-// The mask type of T: bool for double, Mask4 for Lanes4.
-template <class T>
-struct MaskOfT {
-  using type = bool;
-};
-template <>
-struct MaskOfT<Lanes4> {
-  using type = Mask4;
-};
-template <class T>
-using MaskOf = typename MaskOfT<T>::type;
-
 // A mask of T that is false in every lane.
 template <class T>
 MaskOf<T> noLane() {
   if constexpr (sizeof(T) == sizeof(double)) {
     return false;
   } else {
-    return Mask4{RawMask{0, 0, 0, 0}};
+    return MaskOf<T>{};
   }
 }
 
