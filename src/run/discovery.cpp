@@ -148,28 +148,29 @@ struct Discovery::State {
       validation.sets.push_back(std::move(fresh[i]));
     }
     validation.seconds += secondsSince(start);
-    writeFileAtomically(
-        path("validation.csv"),
-        formatValidationCsv(validation.sets, returnedIndex(validation, dim()), task.stateNames()));
   }
 
   std::size_t dim() const { return task.stateDim(); }
+
+  // validation.csv, marking the set at index `returned`.
+  void writeValidationCsv(std::size_t returned) const {
+    writeFileAtomically(path("validation.csv"),
+                        formatValidationCsv(validation.sets, returned, task.stateNames()));
+  }
 
   // Trains the validation winner (unless it is the original variables) and the original
   // variables on the confirmation seeds.
   void confirmWinner() {
     validation.confirmation = {};
-    if (config.validation.confirmSeeds == 0) return;
+    if (!config.validation.confirms()) return;
     const auto start = std::chrono::steady_clock::now();
     const auto& winner = validation.sets[chooseWinner(validation.sets, dim())];
-    std::vector<const expr::Genome*> genomes{nullptr};
+    std::vector<const expr::Genome*> genomes{nullptr};  // The original variables first.
     if (!winner.isOriginal()) genomes.push_back(&winner.genome);
     auto scores = Validator::confirmation(config, threads).score(genomes);
     validation.confirmation.original = std::move(scores[0]);
-    if (!winner.isOriginal()) {
-      validation.confirmation.key = winner.key;
-      validation.confirmation.winner = std::move(scores[1]);
-    }
+    validation.confirmation.key = winner.key;  // Empty for the original variables.
+    if (scores.size() > 1) validation.confirmation.winner = std::move(scores[1]);
     validation.seconds += secondsSince(start);
     writeFileAtomically(path("confirmation.csv"),
                         formatConfirmationCsv(validation, task.stateNames()));
@@ -180,10 +181,9 @@ struct Discovery::State {
   void chooseValidated() {
     validateHallOfFame();
     confirmWinner();
-    const auto& set = validation.sets[returnedIndex(validation, dim())];
-    writeFileAtomically(
-        path("validation.csv"),
-        formatValidationCsv(validation.sets, returnedIndex(validation, dim()), task.stateNames()));
+    const std::size_t returned = returnedIndex(validation, dim());
+    const auto& set = validation.sets[returned];
+    writeValidationCsv(returned);
     writeFeaturesFile(
         path("best.features"),
         returnedFeaturesFile(validation, expr::simplify(task.prepared(set.genome)), task));
@@ -283,6 +283,7 @@ void Discovery::run(const std::function<void(const GenerationRecord&)>& onGenera
     if (s_->validating() && every > 0 && (stats.generation + 1) % every == 0 &&
         !s_->generationsDone()) {
       s_->validateHallOfFame();
+      s_->writeValidationCsv(chooseWinner(s_->validation.sets, s_->dim()));
       s_->writeCheckpoint();
     }
   }

@@ -103,11 +103,10 @@ class Experiment {
       return summarize(scores);
     }
     // The trial behind the reported score: the confirmation's where the run confirms.
-    const bool confirmed = config.validation.candidates > 0 && config.validation.confirmSeeds > 0;
-    const Validator validator(
-        config, o_.threads,
-        confirmed ? LearningTask::Budget::Confirmation : LearningTask::Budget::Validation,
-        kRemeasureSeeds, Validator::kRemeasureStream);
+    const Validator validator(config, o_.threads,
+                              config.validation.confirms() ? LearningTask::Budget::Confirmation
+                                                           : LearningTask::Budget::Validation,
+                              kRemeasureSeeds, Validator::kRemeasureStream);
     scores = validator.score(std::vector<std::shared_ptr<const features::FeatureMap>>{
         genomeFeatureMap(returned, validator.task().stateDim(), config.withOriginal)})[0];
     std::string csv = "score\n";

@@ -145,11 +145,9 @@ bool confirmsWinner(const ValidationState& state, std::size_t stateDim) {
 
 std::size_t returnedIndex(const ValidationState& state, std::size_t stateDim) {
   const std::size_t winner = chooseWinner(state.sets, stateDim);
-  if (confirmsWinner(state, stateDim) && !state.sets[winner].isOriginal() &&
-      !state.confirmation.held()) {
-    return originalIndex(state.sets);
-  }
-  return winner;
+  // A confirmed original-variables winner does not hold either, and is its own fallback.
+  return confirmsWinner(state, stateDim) && !state.confirmation.held() ? originalIndex(state.sets)
+                                                                       : winner;
 }
 
 ReportedScores reportedScores(const ValidationState& state, std::size_t stateDim) {

@@ -78,6 +78,9 @@ struct ExperimentConfig {
     int confirmSeeds = 30;
     std::map<std::string, std::string> confirmParams;
     TrialMeasure confirmMeasure = TrialMeasure::Final;
+
+    // Whether a run validates and then confirms its winner.
+    bool confirms() const { return candidates > 0 && confirmSeeds > 0; }
   } validation;
 
   int assessRuns = 20;  // Independent long trainings per feature set in `gpfd assess`.
