@@ -15,6 +15,7 @@
 #include <ctime>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -155,24 +156,6 @@ void pgFitness(benchmark::State& state, const PgTrial& trial, int trials) {
   report(state, slow, quick, "step");
 }
 
-void BM_PgTrialCartPole(benchmark::State& state) { pgTrial(state, kCartPole); }
-void BM_PgTrialAcrobot(benchmark::State& state) { pgTrial(state, kAcrobot); }
-void BM_PgTrialSwimmer3(benchmark::State& state) { pgTrial(state, kSwimmer3); }
-void BM_PgTrialSwimmer5(benchmark::State& state) { pgTrial(state, kSwimmer5); }
-BENCHMARK(BM_PgTrialCartPole)->Unit(benchmark::kMillisecond)->MinTime(3.0);
-BENCHMARK(BM_PgTrialAcrobot)->Unit(benchmark::kMillisecond)->MinTime(3.0);
-BENCHMARK(BM_PgTrialSwimmer3)->Unit(benchmark::kMillisecond)->MinTime(3.0);
-BENCHMARK(BM_PgTrialSwimmer5)->Unit(benchmark::kMillisecond)->MinTime(3.0);
-
-void BM_PgFitnessCartPole(benchmark::State& state) { pgFitness(state, kCartPole, 5); }
-void BM_PgFitnessAcrobot(benchmark::State& state) { pgFitness(state, kAcrobot, 5); }
-void BM_PgFitnessSwimmer3(benchmark::State& state) { pgFitness(state, kSwimmer3, 4); }
-void BM_PgFitnessSwimmer5(benchmark::State& state) { pgFitness(state, kSwimmer5, 4); }
-BENCHMARK(BM_PgFitnessCartPole)->Unit(benchmark::kMillisecond)->MinTime(3.0);
-BENCHMARK(BM_PgFitnessAcrobot)->Unit(benchmark::kMillisecond)->MinTime(3.0);
-BENCHMARK(BM_PgFitnessSwimmer3)->Unit(benchmark::kMillisecond)->MinTime(3.0);
-BENCHMARK(BM_PgFitnessSwimmer5)->Unit(benchmark::kMillisecond)->MinTime(3.0);
-
 // A GP fitness evaluation as `gpfd evolve` runs it (run::trialFitness on a LearningTask with the
 // trial's settings, lockstep on): reference = its trials one after another, each on a fresh
 // environment (LearningTask::train, as before the trials were played together); fast =
@@ -215,14 +198,29 @@ void trialFitness(benchmark::State& state, const PgTrial& trial, int trials) {
   report(state, slow, quick, "evaluation");
 }
 
-void BM_TrialFitnessCartPole(benchmark::State& state) { trialFitness(state, kCartPole, 5); }
-void BM_TrialFitnessAcrobot(benchmark::State& state) { trialFitness(state, kAcrobot, 5); }
-void BM_TrialFitnessSwimmer3(benchmark::State& state) { trialFitness(state, kSwimmer3, 4); }
-void BM_TrialFitnessSwimmer5(benchmark::State& state) { trialFitness(state, kSwimmer5, 4); }
-BENCHMARK(BM_TrialFitnessCartPole)->Unit(benchmark::kMillisecond)->MinTime(3.0);
-BENCHMARK(BM_TrialFitnessAcrobot)->Unit(benchmark::kMillisecond)->MinTime(3.0);
-BENCHMARK(BM_TrialFitnessSwimmer3)->Unit(benchmark::kMillisecond)->MinTime(3.0);
-BENCHMARK(BM_TrialFitnessSwimmer5)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+// Registers BM_<kind><Env> for the four PG trials, in this order: run(state, trial, K) with K the
+// trials of a fitness evaluation in their configs (5 on cart-pole and Acrobot, 4 on the swimmers).
+template <class Run>
+bool registerPerTrial(const std::string& kind, Run run) {
+  const std::vector<std::tuple<std::string, const PgTrial*, int>> trials{
+      {"CartPole", &kCartPole, 5},
+      {"Acrobot", &kAcrobot, 5},
+      {"Swimmer3", &kSwimmer3, 4},
+      {"Swimmer5", &kSwimmer5, 4}};
+  for (const auto& [name, trial, count] : trials) {
+    benchmark::RegisterBenchmark(
+        ("BM_" + kind + name).c_str(),
+        [run, trial = trial, count = count](benchmark::State& state) { run(state, *trial, count); })
+        ->Unit(benchmark::kMillisecond)
+        ->MinTime(3.0);
+  }
+  return true;
+}
+
+const bool kPgRegistered =
+    registerPerTrial("PgTrial", [](benchmark::State& state, const PgTrial& trial,
+                                   int) { pgTrial(state, trial); }) &&
+    registerPerTrial("PgFitness", pgFitness) && registerPerTrial("TrialFitness", trialFitness);
 
 // Lambda-PI on 12 x 8 with the paper's 18 state variables: 2 iterations of 10 games from the
 // Bertsekas-Ioffe start (short games, so that a run takes milliseconds). Unit: a decision (one
