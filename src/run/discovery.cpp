@@ -12,6 +12,7 @@
 #include "gpfd/gp/fitness_cache.hpp"
 #include "gpfd/run/learning_task.hpp"
 #include "gpfd/run/redundancy.hpp"
+#include "gpfd/run/sequential_test.hpp"
 #include "gpfd/run/thread_evaluator.hpp"
 #include "gpfd/run/validation.hpp"
 #include "gpfd/util/atomic_file.hpp"
@@ -159,7 +160,8 @@ struct Discovery::State {
   }
 
   // Trains the validation winner (unless it is the original variables) and the original
-  // variables on the confirmation seeds.
+  // variables on the confirmation seeds, a look at a time (run/sequential_test.hpp): a clear
+  // difference ends the trials before the last seed.
   void confirmWinner() {
     validation.confirmation = {};
     if (!config.validation.confirms()) return;
@@ -167,10 +169,23 @@ struct Discovery::State {
     const auto& winner = validation.sets[chooseWinner(validation.sets, dim())];
     std::vector<const expr::Genome*> genomes{nullptr};  // The original variables first.
     if (!winner.isOriginal()) genomes.push_back(&winner.genome);
-    auto scores = Validator::confirmation(config, threads).score(genomes);
-    validation.confirmation.original = std::move(scores[0]);
-    validation.confirmation.key = winner.key;  // Empty for the original variables.
-    if (scores.size() > 1) validation.confirmation.winner = std::move(scores[1]);
+    auto& confirmation = validation.confirmation;
+    confirmation.key = winner.key;  // Empty for the original variables.
+    const Validator confirm = Validator::confirmation(config, threads);
+    const auto maps = confirm.maps(genomes);
+    // The original variables alone are confirmed for their score only: nothing to decide.
+    const int looks = winner.isOriginal() ? 1 : config.validation.confirmLooks;
+    for (int look = 1, trained = 0; trained < confirm.seeds(); ++look) {
+      const int until = seedsAtLook(confirm.seeds(), look, looks);
+      auto scores = confirm.score(maps, trained, until);
+      trained = until;
+      confirmation.original.insert(confirmation.original.end(), scores[0].begin(), scores[0].end());
+      if (scores.size() < 2) continue;
+      confirmation.winner.insert(confirmation.winner.end(), scores[1].begin(), scores[1].end());
+      if (endsAtLook(comparePaired(confirmation.winner, confirmation.original), look, looks)) {
+        break;
+      }
+    }
     validation.seconds += secondsSince(start);
     writeFileAtomically(path("confirmation.csv"),
                         formatConfirmationCsv(validation, task.stateNames()));

@@ -9,6 +9,7 @@
 #include "gpfd/io/toml_fields.hpp"
 #include "gpfd/rl/learner.hpp"
 #include "gpfd/run/plugin.hpp"
+#include "gpfd/run/sequential_test.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
 
@@ -69,6 +70,7 @@ void visit(V& v, ExperimentConfig& c) {
   v.integer("validation", "every", c.validation.every, 0, 1000000);
   v.params("validation.params", c.validation.params);
   v.integer("validation", "confirm_seeds", c.validation.confirmSeeds, 0, 100000);
+  v.integer("validation", "confirm_looks", c.validation.confirmLooks, 1, kMaxLooks);
   v.params("validation.confirm_params", c.validation.confirmParams);
   v.measure("validation", "confirm_measure", c.validation.confirmMeasure);
   v.integer("assess", "runs", c.assessRuns, 1, 100000);
@@ -220,6 +222,11 @@ void validateAt(const ExperimentConfig& c, const Place& place) {
           "validation.confirm_seeds must be 0 (no confirmation) or at least 2 (a standard error "
           "needs two trials)",
           place("validation", "confirm_seeds"));
+  require(
+      c.validation.confirmSeeds == 0 || c.validation.confirmSeeds >= 2 * c.validation.confirmLooks,
+      "validation.confirm_looks must leave at least 2 confirmation seeds per look "
+      "(confirm_seeds >= 2 * confirm_looks)",
+      place("validation", "confirm_looks"));
   require(c.maxTrials == 0 || c.maxTrials >= c.trials,
           "fitness.max_trials must be 0 (no re-evaluation) or at least fitness.trials (" +
               std::to_string(c.trials) + ")",

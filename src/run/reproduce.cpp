@@ -206,9 +206,10 @@ std::vector<std::vector<std::string>> settingsTable(const ExperimentConfig& c) {
                  "hall of fame of {} + the original variables, {} seeds ({}){}",
                  c.validation.candidates, c.validation.seeds, joined(c.validation.params),
                  c.validation.confirmSeeds > 0
-                     ? fmt::format("; winner confirmed on {} fresh seeds ({}; {})",
+                     ? fmt::format("; winner confirmed on {} fresh seeds ({}; {}; {} looks)",
                                    c.validation.confirmSeeds, joined(c.validation.confirmParams),
-                                   measureName(c.validation.confirmMeasure))
+                                   measureName(c.validation.confirmMeasure),
+                                   c.validation.confirmLooks)
                      : std::string())
            : "none (the GP's best is returned)"},
       {"GP", fmt::format("population {}, {} generations, crossover {}, elitism {}, "

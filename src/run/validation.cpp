@@ -97,12 +97,19 @@ Validator Validator::confirmation(const ExperimentConfig& config, int threads) {
 
 std::vector<std::vector<double>> Validator::score(
     const std::vector<std::shared_ptr<const features::FeatureMap>>& maps) const {
+  return score(maps, 0, seeds_);
+}
+
+std::vector<std::vector<double>> Validator::score(
+    const std::vector<std::shared_ptr<const features::FeatureMap>>& maps, int from, int to) const {
   const auto& config = task_.config();
   std::vector<const features::FeatureMap*> sets;
   for (const auto& map : maps) sets.push_back(map.get());
+  const auto first = static_cast<std::size_t>(from);
   const auto curves = trainRunGrid(
-      task_, sets, static_cast<std::size_t>(seeds_),
-      [&](std::size_t, std::size_t m) { return deriveSeed(config.seed, stream_, m); }, threads_);
+      task_, sets, static_cast<std::size_t>(to - from),
+      [&](std::size_t, std::size_t m) { return deriveSeed(config.seed, stream_, first + m); },
+      threads_);
   std::vector<std::vector<double>> scores(maps.size());
   for (std::size_t s = 0; s < maps.size(); ++s) {
     for (const auto& curve : curves[s]) scores[s].push_back(task_.score(curve));
@@ -110,7 +117,7 @@ std::vector<std::vector<double>> Validator::score(
   return scores;
 }
 
-std::vector<std::vector<double>> Validator::score(
+std::vector<std::shared_ptr<const features::FeatureMap>> Validator::maps(
     const std::vector<const expr::Genome*>& sets) const {
   std::vector<std::shared_ptr<const features::FeatureMap>> maps;
   for (const auto* genome : sets) {
@@ -118,7 +125,12 @@ std::vector<std::vector<double>> Validator::score(
                        ? task_.featureMap(*genome)
                        : std::make_shared<const features::RawFeatureMap>(task_.stateDim()));
   }
-  return score(maps);
+  return maps;
+}
+
+std::vector<std::vector<double>> Validator::score(
+    const std::vector<const expr::Genome*>& sets) const {
+  return score(maps(sets));
 }
 
 std::size_t originalIndex(const std::vector<ValidatedSet>& sets) {
@@ -280,10 +292,16 @@ expr::FeaturesFile returnedFeaturesFile(const ValidationState& state, const expr
   file.meta["experiment"] = config.name;
   file.meta["seed"] = std::to_string(config.seed);
   file.meta["validated"] = formatMeanSe(summarize(*reported.returned));
+  const auto confirmed = reported.returned->size();
+  const bool endedEarly = confirmed < static_cast<std::size_t>(config.validation.confirmSeeds);
   file.meta["validated_by"] =
       reported.confirmed
-          ? fmt::format("confirmation on {} fresh seeds (validation.confirm_params, measure {})",
-                        reported.returned->size(), measureName(config.validation.confirmMeasure))
+          ? fmt::format("confirmation on {} fresh seeds (validation.confirm_params, measure {}{})",
+                        confirmed, measureName(config.validation.confirmMeasure),
+                        endedEarly ? fmt::format("; a clear difference ended it before the {} "
+                                                 "seeds planned",
+                                                 config.validation.confirmSeeds)
+                                   : std::string())
           : "validation (the best of the candidates: biased upwards)";
   if (reported.confirmed) file.meta["selection"] = formatMeanSe(set.summary());
   file.meta["original"] = formatMeanSe(summarize(*reported.original));

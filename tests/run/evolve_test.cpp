@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <thread>
 
 #include "cli_helpers.hpp"
@@ -201,12 +202,39 @@ TEST(Evolve, BadDiscoveryKeysNameTheKey) {
            {"validation.confirm_seeds=-1", "validation.confirm_seeds"},
            {"validation.confirm_measure=best", "validation.confirm_measure"},
            {"validation.confirm_params.updates=-1", "validation.confirm_params.updates"},
-           {"validation.confirm_params.updatez=3", "updatez"}}) {
+           {"validation.confirm_params.updatez=3", "updatez"},
+           {"validation.confirm_looks=0", "validation.confirm_looks"},
+           {"validation.confirm_looks=6", "validation.confirm_looks"},
+           {"validation.confirm_seeds=5", "validation.confirm_looks"}}) {
     const auto r = runGpfd("evolve " + tinyConfig() + " --quiet --out " + freshDir("bad-key") +
                            " --set " + set);
     EXPECT_EQ(r.status, 2) << set << ": " << r.output;
     EXPECT_NE(r.output.find(key), std::string::npos) << set << ": " << r.output;
   }
+}
+
+// A clear difference ends the confirmation at a look before the last seed (run 2 of the tiny
+// config: after 20 of 30 seeds); the seeds it trained score as they do in a confirmation that
+// trains every seed (confirm_looks = 1), so it is the same test, stopped sooner.
+TEST(Evolve, AClearConfirmationEndsEarly) {
+  const auto early = freshDir("evolve-looks-3"), full = freshDir("evolve-looks-1");
+  const std::string args = "evolve " + tinyConfig() + " --quiet --seed 2 --out ";
+  ASSERT_EQ(runGpfd(args + early).status, 0);
+  ASSERT_EQ(runGpfd(args + full + " --set validation.confirm_looks=1").status, 0);
+  const auto confirmation = [](const std::string& dir) {
+    return nlohmann::json::parse(readText(dir + "/checkpoint.json"))["validation"]["confirmation"];
+  };
+  const auto a = confirmation(early), b = confirmation(full);
+  ASSERT_EQ(a["key"], b["key"]);
+  ASSERT_EQ(a["winner"].size(), 20u);
+  ASSERT_EQ(b["winner"].size(), 30u);
+  for (std::size_t m = 0; m < 20; ++m) {
+    EXPECT_EQ(a["winner"][m], b["winner"][m]) << m;
+    EXPECT_EQ(a["original"][m], b["original"][m]) << m;
+  }
+  const auto best = readText(early + "/best.features");
+  EXPECT_NE(best.find("(20 trials)"), std::string::npos) << best;
+  EXPECT_NE(best.find("before the 30 seeds planned"), std::string::npos) << best;
 }
 
 // The winner's curse is gone: the validated score that best.features carries (the

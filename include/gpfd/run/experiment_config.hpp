@@ -76,6 +76,10 @@ struct ExperimentConfig {
     // original variables there, and that score is what best.features reports. 0: no confirmation
     // (the validation score is reported, biased by the choice among the candidates).
     int confirmSeeds = 30;
+    // Looks at the confirmation (a group-sequential test): after each k/confirmLooks of the
+    // seeds, a paired difference past the O'Brien-Fleming boundary ends it early, decided by its
+    // sign (run/sequential_test.hpp). 1: every seed is trained.
+    int confirmLooks = 3;
     std::map<std::string, std::string> confirmParams;
     TrialMeasure confirmMeasure = TrialMeasure::Final;
 

@@ -91,9 +91,16 @@ class Validator {
   // scores[set][m] of the feature maps.
   std::vector<std::vector<double>> score(
       const std::vector<std::shared_ptr<const features::FeatureMap>>& maps) const;
+  // scores[set][m - from] on seeds m in [from, to) (a seed's score does not depend on the range).
+  std::vector<std::vector<double>> score(
+      const std::vector<std::shared_ptr<const features::FeatureMap>>& maps, int from, int to) const;
   // scores[set][m] of genomes as GP sees them (task().featureMap); null: the original variables.
   std::vector<std::vector<double>> score(const std::vector<const expr::Genome*>& sets) const;
+  // The feature maps of `sets` as score(sets) trains them.
+  std::vector<std::shared_ptr<const features::FeatureMap>> maps(
+      const std::vector<const expr::Genome*>& sets) const;
   const LearningTask& task() const { return task_; }
+  int seeds() const { return seeds_; }
 
  private:
   LearningTask task_;
