@@ -59,8 +59,7 @@ std::vector<std::string> overrides(const EvolveOptions& o) {
 }
 
 std::string meanSe(const run::Summary& s) {
-  const double se = s.n > 1 ? s.stddev / std::sqrt(static_cast<double>(s.n)) : 0.0;
-  return fmt::format("{:.6g} +- {:.3g}", s.mean, se);
+  return fmt::format("{:.6g} +- {:.3g}", s.mean, s.standardError());
 }
 
 // What a finished run returned, in words.

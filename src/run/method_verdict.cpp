@@ -10,13 +10,9 @@
 namespace gpfd::run {
 namespace {
 
-double standardError(const Summary& s) {
-  return s.n > 1 ? s.stddev / std::sqrt(static_cast<double>(s.n)) : 0.0;
-}
-
 std::string meanSe(const Summary& s) {
   if (s.n == 0) return "-";
-  return fmt::format("{:.4g} ± {:.2g}", s.mean, standardError(s));
+  return fmt::format("{:.4g} ± {:.2g}", s.mean, s.standardError());
 }
 
 std::string percent(double difference, double base) {

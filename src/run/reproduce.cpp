@@ -205,7 +205,7 @@ std::vector<std::vector<std::string>> settingsTable(const ExperimentConfig& c) {
            ? fmt::format(
                  "hall of fame of {} + the original variables, {} seeds ({}){}",
                  c.validation.candidates, c.validation.seeds, joined(c.validation.params),
-                 c.validation.confirmSeeds > 0
+                 c.validation.confirms()
                      ? fmt::format("; winner confirmed on {} fresh seeds ({}; {}; {} looks)",
                                    c.validation.confirmSeeds, joined(c.validation.confirmParams),
                                    measureName(c.validation.confirmMeasure),

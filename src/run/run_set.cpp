@@ -57,16 +57,13 @@ std::string formatRunsCsv(const std::vector<RunOutcome>& outcomes) {
   std::string csv =
       "run,seed,gp_best,returned,features,size,validated_mean,validated_se,original_mean,"
       "original_se,difference,p_vs_original,scored_by\n";
-  const auto se = [](const Summary& s) {
-    return s.n > 1 ? s.stddev / std::sqrt(static_cast<double>(s.n)) : 0.0;
-  };
   for (const auto& o : outcomes) {
     csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", o.run, o.seed, o.gpBest,
                        !o.validated    ? "gp-best"
                        : o.originalWon ? "original"
                                        : "discovered",
-                       o.features, o.size, o.winner.mean, se(o.winner), o.original.mean,
-                       se(o.original), o.vsOriginal.meanDifference, o.vsOriginal.p,
+                       o.features, o.size, o.winner.mean, o.winner.standardError(), o.original.mean,
+                       o.original.standardError(), o.vsOriginal.meanDifference, o.vsOriginal.p,
                        !o.validated  ? "gp"
                        : o.confirmed ? "confirmation"
                                      : "validation");

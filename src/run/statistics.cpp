@@ -81,7 +81,7 @@ PairedComparison comparePaired(const std::vector<double>& a, const std::vector<d
   c.n = s.n;
   c.meanDifference = s.mean;
   if (s.n < 2) return c;
-  c.standardError = s.stddev / std::sqrt(static_cast<double>(s.n));
+  c.standardError = s.standardError();
   if (c.standardError > 0) {
     const boost::math::students_t t(s.n - 1);
     c.p = 2 * boost::math::cdf(boost::math::complement(t, std::fabs(s.mean / c.standardError)));

@@ -37,10 +37,6 @@ std::string quoted(const std::string& text) {
   return out + "\"";
 }
 
-double standardError(const Summary& s) {
-  return s.n > 1 ? s.stddev / std::sqrt(static_cast<double>(s.n)) : 0.0;
-}
-
 // Indices of `sets`, best mean first (ties: smaller, then original, then key order).
 std::vector<std::size_t> ranking(const std::vector<ValidatedSet>& sets, std::size_t stateDim) {
   std::vector<double> means;
@@ -187,7 +183,7 @@ std::string formatValidationCsv(const std::vector<ValidatedSet>& sets, std::size
     csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", ++rank,
                        s.isOriginal() ? "original" : "hall-of-fame", s.generation, s.size(dim),
                        s.isOriginal() ? dim : s.genome.featureCount(), s.gpFitness, s.gpTrials,
-                       summary.mean, standardError(summary), summary.stddev, summary.n,
+                       summary.mean, summary.standardError(), summary.stddev, summary.n,
                        paired.meanDifference, s.isOriginal() ? 1.0 : paired.p,
                        i == returned ? 1 : 0, quoted(featuresText(s, stateNames)));
   }
@@ -206,7 +202,7 @@ std::string formatConfirmationCsv(const ValidationState& state,
     const auto paired = comparePaired(scores, confirmation.original);
     csv += fmt::format(
         "{},{},{},{},{},{},{},{},{}\n", set.isOriginal() ? "original" : "validation-winner",
-        summary.mean, standardError(summary), summary.stddev, summary.n, paired.meanDifference,
+        summary.mean, summary.standardError(), summary.stddev, summary.n, paired.meanDifference,
         set.isOriginal() ? 1.0 : paired.p, returned ? 1 : 0, quoted(featuresText(set, stateNames)));
   };
   if (!confirmation.key.empty()) {
@@ -247,7 +243,7 @@ std::string formatFrontCsv(const std::vector<ValidatedSet>& sets,
     const Summary summary = s.summary();
     csv += fmt::format(
         "{},{},{},{},{},{},{},{}\n", s.size(dim), s.isOriginal() ? dim : s.genome.featureCount(),
-        summary.mean, standardError(summary), summary.n,
+        summary.mean, summary.standardError(), summary.n,
         s.isOriginal() ? 1.0 : comparePaired(s.scores, original.scores).p,
         s.isOriginal() ? "original" : "hall-of-fame", quoted(featuresText(s, stateNames)));
   }
@@ -265,7 +261,7 @@ std::string formatFrontTable(const std::vector<ValidatedSet>& sets,
     const Summary summary = s.summary();
     text += fmt::format("{:>5}  {:>8}  {:<22}  {:>9}  {}\n", s.size(dim),
                         s.isOriginal() ? dim : s.genome.featureCount(),
-                        fmt::format("{:.5g} +- {:.3g}", summary.mean, standardError(summary)),
+                        fmt::format("{:.5g} +- {:.3g}", summary.mean, summary.standardError()),
                         s.isOriginal()
                             ? std::string("-")
                             : fmt::format("{:.3g}", comparePaired(s.scores, original.scores).p),
@@ -275,7 +271,7 @@ std::string formatFrontTable(const std::vector<ValidatedSet>& sets,
 }
 
 std::string formatMeanSe(const Summary& summary) {
-  return fmt::format("{:.6g} +- {:.3g} ({} trials)", summary.mean, standardError(summary),
+  return fmt::format("{:.6g} +- {:.3g} ({} trials)", summary.mean, summary.standardError(),
                      summary.n);
 }
 

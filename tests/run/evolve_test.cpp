@@ -257,7 +257,7 @@ TEST(Evolve, TheValidatedScoreHoldsOnFreshSeeds) {
   const auto scores = remeasure.score(std::vector<std::shared_ptr<const features::FeatureMap>>{
       run::genomeFeatureMap(file.genome, 4, config.withOriginal)})[0];
   const auto fresh = run::summarize(scores);
-  const double freshSe = fresh.stddev / std::sqrt(static_cast<double>(fresh.n));
+  const double freshSe = fresh.standardError();
   EXPECT_EQ(fresh.n, 30);
   EXPECT_LE(std::fabs(mean - fresh.mean), 2 * std::hypot(se, freshSe))
       << "validated " << validated << ", re-measured " << fresh.mean << " +- " << freshSe;

@@ -2,6 +2,7 @@
 // the Mann-Whitney U test, with effect sizes.
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 namespace gpfd::run {
@@ -11,6 +12,9 @@ struct Summary {
   double mean = 0.0;
   double stddev = 0.0;     // Sample standard deviation (n - 1).
   double halfWidth = 0.0;  // Of the 95% confidence interval of the mean (Student's t).
+
+  // Of the mean: sd / sqrt(n); 0 for fewer than 2 values.
+  double standardError() const { return n > 1 ? stddev / std::sqrt(static_cast<double>(n)) : 0.0; }
 };
 Summary summarize(const std::vector<double>& values);
 
