@@ -142,6 +142,7 @@ int evaluate(const EvalOptions& o) {
 
 // A run directory stands for its best.features; --front prints its validated front instead.
 int showFront(const std::string& dir) {
+  if (!std::filesystem::exists(dir)) throw InputError("no such run directory", dir);
   if (!std::filesystem::is_directory(dir)) {
     throw InputError("--front needs a run's results directory, not a file", dir);
   }

@@ -56,6 +56,9 @@ TEST(Evolve, WritesTheResultsDirectory) {
             std::count(frontCsv.begin(), frontCsv.end(), '\n'));
   EXPECT_EQ(runGpfd("features show " + dir).status, 0);
   EXPECT_EQ(runGpfd("features show " + dir + "/best.features --front").status, 2);
+  const auto missing = runGpfd("features show " + dir + "/no-such-run --front");
+  EXPECT_EQ(missing.status, 2);
+  EXPECT_NE(missing.output.find("no such run directory"), std::string::npos) << missing.output;
   // The resolved config reads back as a config.
   const auto againDir = freshDir("evolve-files-again");
   const auto again = runGpfd("evolve " + dir + "/config.toml --quiet --out " + againDir);
