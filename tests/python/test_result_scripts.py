@@ -1,0 +1,54 @@
+"""The scripts that summarise committed reproductions (scripts/discovery-cost, scripts/winners-curse)
+reproduce the figures docs/experiments.md quotes from docs/results, and refuse a directory
+without GP runs."""
+
+import subprocess
+import sys
+
+import pytest
+
+
+def run_script(repo, name, *args):
+    return subprocess.run([sys.executable, str(repo / "scripts" / name), *args], cwd=repo,
+                          capture_output=True, text=True)
+
+
+def table_rows(output):
+    """{first cell: cells} of a Markdown table, header and rule left out."""
+    rows = {}
+    for line in output.splitlines()[2:]:
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        rows[cells[0]] = cells
+    return rows
+
+
+def test_discovery_cost_gives_the_documented_shares(repo):
+    done = run_script(repo, "discovery-cost", "docs/results/paper-runs")
+    assert done.returncode == 0, done.stderr
+    rows = table_rows(done.stdout)
+    assert len(rows) == 5
+    # docs/experiments.md, "Cost of the added evaluation": re-evaluation share, validation share,
+    # added compute and early confirmations of the paper-scale runs.
+    expected = {"cartpole": ("6.4%", "12%"), "acrobot": ("7.3%", "13%"),
+                "swimmer3": ("8.6%", "17%"), "swimmer5": ("14.0%", "30%"),
+                "tetris": ("10.6%", "20%")}
+    for name, (reevaluated, added) in expected.items():
+        cells = rows[f"{name} (docs/results/paper-runs)"]
+        assert cells[1] == "5"
+        assert (cells[2], cells[4]) == (reevaluated, added), cells
+
+
+def test_winners_curse_gives_the_documented_agreement(repo):
+    done = run_script(repo, "winners-curse", "docs/results/paper-runs")
+    assert done.returncode == 0, done.stderr
+    within = {cells[0]: cells[-1] for cells in table_rows(done.stdout).values()}
+    assert within == {"cartpole": "5 of 5", "acrobot": "5 of 5", "swimmer3": "4 of 5",
+                      "swimmer5": "5 of 5", "tetris": "5 of 5"}
+
+
+@pytest.mark.parametrize("name", ["discovery-cost", "winners-curse"])
+def test_a_directory_without_gp_runs_is_an_error(repo, tmp_path, name):
+    done = run_script(repo, name, str(tmp_path))
+    assert done.returncode != 0
+    assert str(tmp_path) in done.stderr
+    assert done.stdout == ""
