@@ -10,6 +10,20 @@ void FeatureMap::evaluateBatch(const double* states, std::size_t n, double* out)
   for (std::size_t i = 0; i < n; ++i) evaluate(states + i * in, out + i * k);
 }
 
+void FeatureMap::evaluateLaneBlocks(const double* blocks, std::size_t groups, double* out) const {
+  const std::size_t in = inputDim(), k = outputDim();
+  thread_local std::vector<double> state, features;  // No allocation once grown.
+  state.resize(in);
+  features.resize(k);
+  for (std::size_t g = 0; g < groups; ++g, blocks += 4 * in, out += 4 * k) {
+    for (std::size_t lane = 0; lane < 4; ++lane) {
+      for (std::size_t i = 0; i < in; ++i) state[i] = blocks[i * 4 + lane];
+      evaluate(state.data(), features.data());
+      for (std::size_t j = 0; j < k; ++j) out[j * 4 + lane] = features[j];
+    }
+  }
+}
+
 void RawFeatureMap::evaluate(const double* state, double* features) const {
   std::copy(state, state + dim_, features);
 }

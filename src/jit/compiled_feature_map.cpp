@@ -53,6 +53,8 @@ CompiledFeatureMap::CompiledFeatureMap(const expr::Genome& genome, std::size_t i
     try {
       batchCode_ = compileBatch(interpreter_.program());
       batch_ = reinterpret_cast<BatchKernel>(batchCode_.entry());
+      blocksCode_ = compileLaneBlocks(interpreter_.program());
+      blocks_ = reinterpret_cast<BatchKernel>(blocksCode_.entry());
     } catch (const CompileError&) {
       // The batch then runs the scalar function per state; nothing is lost but speed.
     }
@@ -79,6 +81,15 @@ void CompiledFeatureMap::evaluateBatch(const double* states, std::size_t n, doub
     done = n / 4 * 4;
   }
   for (std::size_t i = done; i < n; ++i) scalar_(states + i * in, out + i * k);
+}
+
+void CompiledFeatureMap::evaluateLaneBlocks(const double* blocks, std::size_t groups,
+                                            double* out) const {
+  if (blocks_) {
+    blocks_(blocks, groups, out);
+  } else {
+    FeatureMap::evaluateLaneBlocks(blocks, groups, out);
+  }
 }
 
 }  // namespace gpfd::jit

@@ -127,6 +127,10 @@ class RecordingErrorHandler : public asmjit::ErrorHandler {
 // again with a frame.
 struct NeedFrame {};
 
+// Where the code reads states and writes features: one state (scalar function), four consecutive
+// state rows (StateRows), or lane blocks (LaneBlocks); x86_compiler.hpp.
+enum class Layout { Scalar, StateRows, LaneBlocks };
+
 // The fixed entries of the constant pool, before the program's constants.
 enum Fixed : int { kPosMax, kNegMax, kAbsMask, kSignMask, kNearZero, kOne, kFixedCount };
 
@@ -149,13 +153,14 @@ std::vector<std::uint32_t> lastUses(const Program& program) {
 class Emitter {
  public:
   Emitter(x86::Assembler& a, const Program& program, const std::vector<std::uint32_t>& lastUse,
-          bool batch, bool frame)
+          Layout layout, bool frame)
       : a_(a),
         p_(program),
         lastUse_(lastUse),
-        batch_(batch),
+        batch_(layout != Layout::Scalar),
+        blocks_(layout == Layout::LaneBlocks),
         frame_(frame),
-        width_(batch ? 32 : 8) {}
+        width_(batch_ ? 32 : 8) {}
 
   void emit() {
     const std::size_t n = p_.code.size();
@@ -456,7 +461,10 @@ class Emitter {
   void variable(std::uint32_t v, std::uint16_t var) {
     const int d = allocate(0);
     const auto disp = static_cast<std::int32_t>(8 * var);
-    if (batch_) {
+    if (blocks_) {
+      a_.vmovupd(x86::ymm(d), x86::ptr(state_, 4 * disp));  // The variable's four lanes.
+      a_.vcmppd(x86::ymm(kScratchB), x86::ymm(d), x86::ymm(d), 7);
+    } else if (batch_) {
       const auto row = static_cast<std::int32_t>(8 * p_.inputDim);
       const x86::Xmm dx = x86::xmm(d), s = x86::xmm(kScratchB);
       a_.vmovsd(dx, x86::ptr(state_, disp));
@@ -675,7 +683,9 @@ class Emitter {
     const int r = values_[v].reg;
     for (int k = outputsAt_[v]; k >= 0; k = nextOutput_[k]) {
       const auto disp = static_cast<std::int32_t>(8 * k);
-      if (batch_) {
+      if (blocks_) {
+        a_.vmovupd(x86::ptr(out_, 4 * disp), x86::ymm(r));
+      } else if (batch_) {
         const auto row = static_cast<std::int32_t>(8 * p_.outputs.size());
         a_.vmovlpd(x86::ptr(out_, disp), x86::xmm(r));
         a_.vmovhpd(x86::ptr(out_, disp + row), x86::xmm(r));
@@ -695,7 +705,8 @@ class Emitter {
     const int rows = batch_ ? 4 : 1;
     for (int k = outputsAt_[v]; k >= 0; k = nextOutput_[k]) {
       for (int j = 0; j < rows; ++j) {
-        const auto disp = static_cast<std::int32_t>(8 * (k + j * p_.outputs.size()));
+        const auto disp = static_cast<std::int32_t>(
+            8 * (blocks_ ? 4 * k + j : k + j * static_cast<int>(p_.outputs.size())));
         a_.mov(x86::qword_ptr(out_, disp), x86::rax);
       }
     }
@@ -705,6 +716,7 @@ class Emitter {
   const Program& p_;
   const std::vector<std::uint32_t>& lastUse_;
   const bool batch_;
+  const bool blocks_;  // Batch kernel reading and writing lane blocks (x86_compiler.hpp).
   const bool vex_ = hostHasAvx();  // AVX encodings allowed in the scalar function too.
   const bool frame_;
   const int width_;
@@ -735,7 +747,8 @@ bool mayNeedSpills(const Program& program, const std::vector<std::uint32_t>& las
   return false;
 }
 
-NativeCode compile(const Program& program, bool batch) {
+NativeCode compile(const Program& program, Layout layout) {
+  const bool batch = layout != Layout::Scalar;
   if (batch && !hostHasAvx2()) throw CompileError("the CPU has no AVX2");
   Runtime& rt = runtime();
   const auto lastUse = lastUses(program);
@@ -746,7 +759,7 @@ NativeCode compile(const Program& program, bool batch) {
     code.init(rt.jit->environment());
     code.setErrorHandler(&errors);
     x86::Assembler assembler(&code);
-    Emitter emitter(assembler, program, lastUse, batch, frame);
+    Emitter emitter(assembler, program, lastUse, layout, frame);
     try {
       emitter.emit();
     } catch (const NeedFrame&) {
@@ -788,8 +801,11 @@ bool hostHasAvx2() {
 
 bool jitUsesDualMapping() { return runtime().dualMapping; }
 
-NativeCode compileScalar(const Program& program) { return compile(program, false); }
-NativeCode compileBatch(const Program& program) { return compile(program, true); }
+NativeCode compileScalar(const Program& program) { return compile(program, Layout::Scalar); }
+NativeCode compileBatch(const Program& program) { return compile(program, Layout::StateRows); }
+NativeCode compileLaneBlocks(const Program& program) {
+  return compile(program, Layout::LaneBlocks);
+}
 
 #else  // No JIT in this build (GPFD_WITH_JIT=OFF, or not x86-64): the interpreter runs everything.
 
@@ -801,6 +817,7 @@ bool hostHasAvx2() { return false; }
 bool jitUsesDualMapping() { return false; }
 NativeCode compileScalar(const Program&) { throw CompileError("built without the JIT"); }
 NativeCode compileBatch(const Program&) { throw CompileError("built without the JIT"); }
+NativeCode compileLaneBlocks(const Program&) { throw CompileError("built without the JIT"); }
 
 #endif
 

@@ -35,8 +35,9 @@ class LockstepPlayer final : public Player {
         normalise_(setup.runs.front().features->options().normalise),
         store_(0, stride_, stateDim_, batch_->actionComponents()),
         io_(store_.buffers()),
-        rows_(stride_ * std::max(stateDim_, std::size_t{1}), 0.0),
+        blocks_(stride_ * std::max(stateDim_, std::size_t{1}), 0.0),
         raw_(stride_ * std::max(rawDim_, std::size_t{1}), 0.0),
+        rawRow_(rawDim_, 0.0),
         phi_(dim_ * stride_, 1.0),  // The bias row, if any, stays 1.
         mu_(outputs_ * stride_, 0.0),
         eps_(stride_, 0.0),
@@ -92,18 +93,20 @@ class LockstepPlayer final : public Player {
 
  private:
   // phi (dim_ rows of stride_) for lanes [0, active), as FeaturePipeline::transform makes them;
-  // marks the lanes whose features are not finite. The map evaluates whole groups of four (the
-  // JIT's AVX2 kernel; the rows beyond `active` hold old states and are ignored).
+  // marks the lanes whose features are not finite. The map evaluates whole blocks of four lanes
+  // (the JIT's lane-block kernel; the lanes beyond `active` hold old states and are ignored).
   void features(std::size_t active, std::vector<FeatureMoments>* moments) {
-    lockstep::toLaneMajor(lanes_, store_.state.data(), stateDim_, rows_.data());
-    s_.map->evaluateBatch(rows_.data(), lanes_.lanes, raw_.data());
-    lockstep::fromLaneMajor(lanes_, raw_.data(), rawDim_, phi_.data());
+    lockstep::toLaneBlocks(lanes_, store_.state.data(), stateDim_, blocks_.data());
+    s_.map->evaluateLaneBlocks(blocks_.data(), lanes_.lanes / 4, raw_.data());
+    lockstep::fromLaneBlocks(lanes_, raw_.data(), rawDim_, phi_.data());
     lockstep::checkAndNormalise(lanes_, phi_.data(), rawDim_, normalise_ ? shift_.data() : nullptr,
                                 scale_.data(), failed_.data());
-    if (moments != nullptr) {
-      for (std::size_t l = 0; l < active; ++l) {
-        if (!failed_[l]) (*moments)[episode_[l]].add(raw_.data() + l * rawDim_);
-      }
+    if (moments == nullptr) return;
+    for (std::size_t l = 0; l < active; ++l) {
+      if (failed_[l]) continue;
+      const double* block = raw_.data() + l / 4 * 4 * rawDim_ + l % 4;
+      for (std::size_t j = 0; j < rawDim_; ++j) rawRow_[j] = block[4 * j];
+      (*moments)[episode_[l]].add(rawRow_.data());
     }
   }
 
@@ -262,7 +265,8 @@ class LockstepPlayer final : public Player {
   lockstep::Rows lanes_;     // The lane rows as the kernels see them.
   env::BatchStorage store_;  // The environment's lanes: structure of arrays, `stride_` apart.
   env::BatchBuffers& io_;
-  std::vector<double> rows_, raw_;  // States and raw features, one row per lane (the map's layout).
+  std::vector<double> blocks_, raw_;  // States and raw features in lane blocks (the map's layout).
+  std::vector<double> rawRow_;        // One lane's raw features.
   std::vector<double> phi_, mu_, eps_, coefficient_, choiceCoefficient_, logits_, eligibility_;
   std::vector<double> weights_, sd_, shift_, scale_;  // Each lane's run's parameters.
   std::vector<double> weight_;                        // Discount weight of the next reward.

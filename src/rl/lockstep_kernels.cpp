@@ -30,49 +30,6 @@ void flagNotFiniteT(const Rows& rows, const double* values, std::size_t count, s
   }
 }
 
-// The 4 x 4 block of lanes [l, l + 4) and variables [i, i + 4), transposed.
-inline void transpose4(lanes::RawLanes v[4]) {
-  const lanes::RawLanes t0 = __builtin_shufflevector(v[0], v[1], 0, 4, 2, 6);
-  const lanes::RawLanes t1 = __builtin_shufflevector(v[0], v[1], 1, 5, 3, 7);
-  const lanes::RawLanes t2 = __builtin_shufflevector(v[2], v[3], 0, 4, 2, 6);
-  const lanes::RawLanes t3 = __builtin_shufflevector(v[2], v[3], 1, 5, 3, 7);
-  v[0] = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
-  v[1] = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
-  v[2] = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
-  v[3] = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
-}
-
-// Lane-major <-> structure of arrays; `toLanes` chooses the direction. Whole 4 x 4 blocks with
-// AVX2 (T = Lanes4), the remaining variables one by one.
-template <class T>
-void transposeT(const Rows& rows, const double* from, std::size_t dim, double* to, bool toLanes) {
-  std::size_t first = 0;
-  if constexpr (lanes::kWidth<T> == 4) {
-    first = dim / 4 * 4;
-    for (std::size_t l = 0; l < rows.lanes; l += 4) {
-      for (std::size_t i = 0; i < first; i += 4) {
-        lanes::RawLanes v[4];
-        for (std::size_t k = 0; k < 4; ++k) {
-          v[k] = loadAs<T>(toLanes ? from + (l + k) * dim + i : from + (i + k) * rows.stride + l).v;
-        }
-        transpose4(v);
-        for (std::size_t k = 0; k < 4; ++k) {
-          store(toLanes ? to + (i + k) * rows.stride + l : to + (l + k) * dim + i, T(v[k]));
-        }
-      }
-    }
-  }
-  for (std::size_t l = 0; l < rows.lanes; ++l) {
-    for (std::size_t i = first; i < dim; ++i) {
-      if (toLanes) {
-        to[i * rows.stride + l] = from[l * dim + i];
-      } else {
-        to[l * dim + i] = from[i * rows.stride + l];
-      }
-    }
-  }
-}
-
 template <class T>
 void checkAndNormaliseT(const Rows& rows, double* phi, std::size_t dim, const double* shift,
                         const double* scale, std::uint8_t* failed) {
@@ -84,6 +41,22 @@ void checkAndNormaliseT(const Rows& rows, double* phi, std::size_t dim, const do
       double* p = phi + j * rows.stride + l;
       store(p, (loadAs<T>(p) - loadAs<T>(shift + j * rows.stride + l)) /
                    loadAs<T>(scale + j * rows.stride + l));
+    }
+  }
+}
+
+// Lane rows <-> lane blocks; `toRows` chooses the direction. With AVX2 (T = Lanes4) a block row
+// is one 32-byte load and store, so that the JIT kernel's 32-byte load of it is forwarded from
+// one store.
+template <class T>
+void copyBlocksT(const Rows& rows, const double* from, std::size_t dim, double* to, bool toRows) {
+  for (std::size_t l = 0; l < rows.lanes; l += 4) {
+    const std::size_t block = l * dim;  // (l / 4) * 4 * dim.
+    for (std::size_t i = 0; i < dim; ++i) {
+      const std::size_t row = i * rows.stride + l, inBlock = block + 4 * i;
+      for (std::size_t k = 0; k < 4; k += lanes::kWidth<T>) {
+        store(to + (toRows ? row : inBlock) + k, loadAs<T>(from + (toRows ? inBlock : row) + k));
+      }
     }
   }
 }
@@ -138,9 +111,9 @@ GPFD_AVX2_KERNEL void flagNotFiniteAvx2(const Rows& rows, const double* values, 
                                         std::size_t count2) {
   flagNotFiniteT<lanes::Lanes4>(rows, values, count, flags, values2, count2);
 }
-GPFD_AVX2_KERNEL void transposeAvx2(const Rows& rows, const double* from, std::size_t dim,
-                                    double* to, bool toLanes) {
-  transposeT<lanes::Lanes4>(rows, from, dim, to, toLanes);
+GPFD_AVX2_KERNEL void copyBlocksAvx2(const Rows& rows, const double* from, std::size_t dim,
+                                     double* to, bool toRows) {
+  copyBlocksT<lanes::Lanes4>(rows, from, dim, to, toRows);
 }
 GPFD_AVX2_KERNEL void linearOutputsAvx2(const Rows& rows, const double* w, std::size_t outputs,
                                         std::size_t dim, const double* phi, double* mu) {
@@ -173,14 +146,14 @@ void flagNotFinite(const Rows& rows, const double* values, std::size_t count, st
   flagNotFiniteT<double>(rows, values, count, flags, values2, count2);
 }
 
-void toLaneMajor(const Rows& rows, const double* soa, std::size_t dim, double* aos) {
-  if (rows.avx2) return transposeAvx2(rows, soa, dim, aos, false);
-  transposeT<double>(rows, soa, dim, aos, false);
+void toLaneBlocks(const Rows& rows, const double* soa, std::size_t dim, double* blocks) {
+  if (rows.avx2) return copyBlocksAvx2(rows, soa, dim, blocks, false);
+  copyBlocksT<double>(rows, soa, dim, blocks, false);
 }
 
-void fromLaneMajor(const Rows& rows, const double* aos, std::size_t dim, double* soa) {
-  if (rows.avx2) return transposeAvx2(rows, aos, dim, soa, true);
-  transposeT<double>(rows, aos, dim, soa, true);
+void fromLaneBlocks(const Rows& rows, const double* blocks, std::size_t dim, double* soa) {
+  if (rows.avx2) return copyBlocksAvx2(rows, blocks, dim, soa, true);
+  copyBlocksT<double>(rows, blocks, dim, soa, true);
 }
 
 void linearOutputs(const Rows& rows, const double* w, std::size_t outputs, std::size_t dim,

@@ -27,9 +27,10 @@ void flagNotFinite(const Rows& rows, const double* values, std::size_t count, st
                    const double* values2 = nullptr, std::size_t count2 = 0);
 
 // Between the lane rows (structure of arrays: variable i of lane l at soa[i * stride + l]) and
-// one row per lane (aos[l * dim + i]), for lanes [0, rows.lanes).
-void toLaneMajor(const Rows& rows, const double* soa, std::size_t dim, double* aos);
-void fromLaneMajor(const Rows& rows, const double* aos, std::size_t dim, double* soa);
+// the feature map's lane blocks (FeatureMap::evaluateLaneBlocks: blocks[(l / 4 * dim + i) * 4 +
+// l % 4]), for lanes [0, rows.lanes).
+void toLaneBlocks(const Rows& rows, const double* soa, std::size_t dim, double* blocks);
+void fromLaneBlocks(const Rows& rows, const double* blocks, std::size_t dim, double* soa);
 
 // mu rows i < outputs = sum over j in order of w rows (i * dim + j) times phi rows j
 // (LinearPolicy's outputs).

@@ -1,5 +1,6 @@
-// Differential tests: the fast interpreter, the scalar JIT and the AVX2 batch kernel agree bit for
-// bit with the reference interpreter (expr::evaluate) on random genomes and edge-case states.
+// Differential tests: the fast interpreter, the scalar JIT and the AVX2 batch kernels (state rows
+// and lane blocks) agree bit for bit with the reference interpreter (expr::evaluate) on random
+// genomes and edge-case states.
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -38,6 +39,29 @@ void expectAgreement(const expr::Genome& genome, const std::vector<double>& stat
     compiled.evaluate(states.data() + i * kVariables, viaJit.data() + i * k);
   }
   compiled.evaluateBatch(states.data(), n, viaBatch.data());
+  // The lane-block kernel and the default lane-block evaluation (the fast interpreter's), on the
+  // whole blocks of four states.
+  const std::size_t groups = n / 4;
+  std::vector<double> blocks(groups * 4 * kVariables);
+  for (std::size_t l = 0; l < groups * 4; ++l) {
+    for (std::size_t i = 0; i < kVariables; ++i) {
+      blocks[(l / 4 * kVariables + i) * 4 + l % 4] = states[l * kVariables + i];
+    }
+  }
+  std::vector<double> viaBlocks(groups * 4 * k, -7.0), viaFastBlocks(groups * 4 * k, -7.0);
+  compiled.evaluateLaneBlocks(blocks.data(), groups, viaBlocks.data());
+  fast.evaluateLaneBlocks(blocks.data(), groups, viaFastBlocks.data());
+  for (std::size_t l = 0; l < groups * 4; ++l) {
+    for (std::size_t j = 0; j < k; ++j) {
+      const double expected = reference[l * k + j];
+      const std::size_t at = (l / 4 * k + j) * 4 + l % 4;
+      ASSERT_TRUE(sameBits(expected, viaBlocks[at]))
+          << where << " lane blocks: state " << l << " feature " << j << " " << expected << " vs "
+          << viaBlocks[at];
+      ASSERT_TRUE(sameBits(expected, viaFastBlocks[at]))
+          << where << " default lane blocks: state " << l << " feature " << j;
+    }
+  }
   for (std::size_t j = 0; j < n * k; ++j) {
     ASSERT_TRUE(std::isfinite(reference[j])) << where;
     ASSERT_TRUE(sameBits(reference[j], viaFast[j]))

@@ -20,6 +20,11 @@ class FeatureMap {
   // n states laid out one after another (n * inputDim() values) to n feature rows
   // (n * outputDim() values). The default calls evaluate() per state.
   virtual void evaluateBatch(const double* states, std::size_t n, double* out) const;
+  // `groups` blocks of four states, variable i of lane l of block g at
+  // blocks[(g * inputDim() + i) * 4 + l], to blocks of features
+  // (out[(g * outputDim() + k) * 4 + l]): the lockstep learners' layout. The default gathers each
+  // lane's state and calls evaluate().
+  virtual void evaluateLaneBlocks(const double* blocks, std::size_t groups, double* out) const;
   // Whether the features are the state variables themselves, in order (RawFeatureMap): a learner
   // may then start from weights known for the state (AfterstateGame::knownValueWeights).
   virtual bool isIdentity() const { return false; }

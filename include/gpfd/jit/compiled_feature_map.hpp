@@ -17,7 +17,7 @@ namespace gpfd::jit {
 
 struct CompileOptions {
   bool native = true;  // false: use the interpreter (no message).
-  bool batch = true;   // Also compile the AVX2 batch kernel when the CPU has AVX2.
+  bool batch = true;   // Also compile the AVX2 batch kernels when the CPU has AVX2.
 };
 
 class CompiledFeatureMap final : public features::FeatureMap {
@@ -34,6 +34,7 @@ class CompiledFeatureMap final : public features::FeatureMap {
   std::size_t outputDim() const override { return interpreter_.outputDim(); }
   void evaluate(const double* state, double* features) const override;
   void evaluateBatch(const double* states, std::size_t n, double* out) const override;
+  void evaluateLaneBlocks(const double* blocks, std::size_t groups, double* out) const override;
 
   // Whether evaluate() runs native code; otherwise fallbackReason() says why not.
   bool isNative() const { return scalar_ != nullptr; }
@@ -44,9 +45,9 @@ class CompiledFeatureMap final : public features::FeatureMap {
 
  private:
   FastInterpretedFeatureMap interpreter_;
-  NativeCode scalarCode_, batchCode_;
+  NativeCode scalarCode_, batchCode_, blocksCode_;
   ScalarFunction scalar_ = nullptr;
-  BatchKernel batch_ = nullptr;
+  BatchKernel batch_ = nullptr, blocks_ = nullptr;  // State rows; lane blocks.
   std::string reason_;
 };
 
