@@ -28,6 +28,11 @@ void RawFeatureMap::evaluate(const double* state, double* features) const {
   std::copy(state, state + dim_, features);
 }
 
+void RawFeatureMap::evaluateLaneBlocks(const double* blocks, std::size_t groups,
+                                       double* out) const {
+  std::copy(blocks, blocks + groups * 4 * dim_, out);  // The features' blocks are the states'.
+}
+
 ConcatFeatureMap::ConcatFeatureMap(std::vector<std::shared_ptr<const FeatureMap>> parts)
     : parts_(std::move(parts)) {
   if (parts_.empty()) throw std::invalid_argument("ConcatFeatureMap needs at least one part");

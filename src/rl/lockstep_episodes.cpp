@@ -1,6 +1,6 @@
 // rl: the lockstep player (episode_players.hpp): the episodes of one call advance together, one
 // step of every running episode at a time. Per step: the states (structure of arrays, one lane
-// per episode) go through the feature map's batch evaluation (the JIT's AVX2 kernel), the
+// per episode) go through the feature map's lane-block evaluation (the JIT's AVX2 kernel), the
 // features are checked and normalised, the policy's outputs, Gaussian draws (each episode's own
 // stream, util/rng_lanes.hpp), actions and likelihood gradients are computed four lanes at a time
 // (lockstep_kernels.hpp), and the batched environment steps every lane. An episode that ends frees

@@ -23,6 +23,7 @@ TEST(CompiledFeatureMap, IsNativeWhereTheJitIsAvailable) {
   const CompiledFeatureMap map(sample(1), 4);
   EXPECT_EQ(map.isNative(), jitAvailable());
   EXPECT_EQ(map.hasNativeBatch(), jitAvailable() && hostHasAvx2());
+  EXPECT_EQ(map.hasNativeLaneBlocks(), jitAvailable() && hostHasAvx2());
   EXPECT_EQ(map.inputDim(), 4u);
   EXPECT_EQ(map.outputDim(), sample(1).featureCount());
 }
@@ -58,7 +59,7 @@ TEST(CompiledFeatureMapDeathTest, SaysOnceOnStderrWhenTheJitIsDisabled) {
       "^gpfd: JIT unavailable [^\n]*; features run on the interpreter\n$");
 }
 
-TEST(CompiledFeatureMap, BatchOfAnySizeWritesExactlyItsRows) {
+TEST(CompiledFeatureMap, BatchOfAnySizeWritesExactlyItsRowsAndBlocks) {
   const auto genome = sample(3);
   const std::size_t k = genome.featureCount();
   const CompiledFeatureMap map(genome, 4);
@@ -79,6 +80,18 @@ TEST(CompiledFeatureMap, BatchOfAnySizeWritesExactlyItsRows) {
       }
     }
     for (std::size_t j = n * k; j < out.size(); ++j) EXPECT_EQ(out[j], 12345.0);
+    // Lane blocks: the whole blocks of four, and nothing beyond them.
+    const auto blocks = testing::toLaneBlocks(states.data(), n, 4);
+    std::fill(out.begin(), out.end(), 12345.0);
+    map.evaluateLaneBlocks(blocks.data(), n / 4, out.data());
+    for (std::size_t i = 0; i < n / 4 * 4; ++i) {
+      expr::evaluate(genome, states.data() + 4 * i, expected.data());
+      for (std::size_t j = 0; j < k; ++j) {
+        ASSERT_TRUE(testing::sameBits(expected[j], testing::laneBlockValue(out.data(), i, j, k)))
+            << n << " " << i;
+      }
+    }
+    for (std::size_t j = n / 4 * 4 * k; j < out.size(); ++j) EXPECT_EQ(out[j], 12345.0);
   }
 }
 
@@ -89,6 +102,8 @@ TEST(CompiledFeatureMap, EmptyGenomeHasNoFeatures) {
   double sentinel = 9.0;
   map.evaluate(state, &sentinel);
   map.evaluateBatch(state, 1, &sentinel);
+  const double block[8] = {1.0, 1.0, 1.0, 1.0, 2.0, 2.0, 2.0, 2.0};
+  map.evaluateLaneBlocks(block, 1, &sentinel);
   EXPECT_EQ(sentinel, 9.0);
 }
 

@@ -42,23 +42,17 @@ void expectAgreement(const expr::Genome& genome, const std::vector<double>& stat
   // The lane-block kernel and the default lane-block evaluation (the fast interpreter's), on the
   // whole blocks of four states.
   const std::size_t groups = n / 4;
-  std::vector<double> blocks(groups * 4 * kVariables);
-  for (std::size_t l = 0; l < groups * 4; ++l) {
-    for (std::size_t i = 0; i < kVariables; ++i) {
-      blocks[(l / 4 * kVariables + i) * 4 + l % 4] = states[l * kVariables + i];
-    }
-  }
+  const auto blocks = testing::toLaneBlocks(states.data(), n, kVariables);
   std::vector<double> viaBlocks(groups * 4 * k, -7.0), viaFastBlocks(groups * 4 * k, -7.0);
   compiled.evaluateLaneBlocks(blocks.data(), groups, viaBlocks.data());
   fast.evaluateLaneBlocks(blocks.data(), groups, viaFastBlocks.data());
   for (std::size_t l = 0; l < groups * 4; ++l) {
     for (std::size_t j = 0; j < k; ++j) {
       const double expected = reference[l * k + j];
-      const std::size_t at = (l / 4 * k + j) * 4 + l % 4;
-      ASSERT_TRUE(sameBits(expected, viaBlocks[at]))
-          << where << " lane blocks: state " << l << " feature " << j << " " << expected << " vs "
-          << viaBlocks[at];
-      ASSERT_TRUE(sameBits(expected, viaFastBlocks[at]))
+      const double got = testing::laneBlockValue(viaBlocks.data(), l, j, k);
+      ASSERT_TRUE(sameBits(expected, got)) << where << " lane blocks: state " << l << " feature "
+                                           << j << " " << expected << " vs " << got;
+      ASSERT_TRUE(sameBits(expected, testing::laneBlockValue(viaFastBlocks.data(), l, j, k)))
           << where << " default lane blocks: state " << l << " feature " << j;
     }
   }

@@ -124,16 +124,25 @@ TEST(Malicious, CompiledCodeStaysInsideItsBuffers) {
     const std::size_t k = genome.featureCount();
     const CompiledFeatureMap map(genome, kVariables);
     ASSERT_TRUE(map.isNative());
-    std::vector<double> expected(5 * k);
+    std::vector<double> expected(8 * k);
     for (bool end : {true, false}) {
-      double* s = end ? states.atEnd(5 * kVariables) : states.atStart();
-      double* f = end ? features.atEnd(5 * k) : features.atStart();
-      for (int i = 0; i < 5 * kVariables; ++i) s[i] = rng.normal();
-      for (int i = 0; i < 5; ++i) expr::evaluate(genome, s + i * kVariables, &expected[i * k]);
+      double* s = end ? states.atEnd(8 * kVariables) : states.atStart();
+      double* f = end ? features.atEnd(8 * k) : features.atStart();
+      for (int i = 0; i < 8 * kVariables; ++i) s[i] = rng.normal();
+      for (int i = 0; i < 8; ++i) expr::evaluate(genome, s + i * kVariables, &expected[i * k]);
       map.evaluate(s, f);
       for (std::size_t j = 0; j < k; ++j) ASSERT_TRUE(testing::sameBits(expected[j], f[j]));
       map.evaluateBatch(s, 5, f);
       for (std::size_t j = 0; j < 5 * k; ++j) ASSERT_TRUE(testing::sameBits(expected[j], f[j]));
+      // Two lane blocks of four states, read and written at the edges of the guarded buffers.
+      const auto blocks = testing::toLaneBlocks(s, 8, kVariables);
+      std::copy(blocks.begin(), blocks.end(), s);
+      map.evaluateLaneBlocks(s, 2, f);
+      for (std::size_t l = 0; l < 8; ++l) {
+        for (std::size_t j = 0; j < k; ++j) {
+          ASSERT_TRUE(testing::sameBits(expected[l * k + j], testing::laneBlockValue(f, l, j, k)));
+        }
+      }
     }
   }
 }
@@ -187,6 +196,11 @@ TEST(Malicious, HeavySpillingIsCorrectOrRefused) {
     map.evaluateBatch(states.data(), 8, batch.data());
     for (std::size_t j = 0; j < batch.size(); ++j) {
       ASSERT_TRUE(testing::sameBits(expected[j % got.size()], batch[j]));
+    }
+    const auto blocks = testing::toLaneBlocks(states.data(), 8, 3);
+    map.evaluateLaneBlocks(blocks.data(), 2, batch.data());
+    for (std::size_t j = 0; j < batch.size(); ++j) {
+      ASSERT_TRUE(testing::sameBits(expected[j / 4 % got.size()], batch[j]));
     }
   }
 }

@@ -69,8 +69,10 @@ TEST_P(Opcode, AgreesOnEveryPairOfEdgeValues) {
   if (jitAvailable()) {
     ASSERT_TRUE(compiled.isNative()) << compiled.fallbackReason();
   }
-  std::vector<double> batch(n * k);
+  std::vector<double> batch(n * k), blocks(n * k);
   compiled.evaluateBatch(states.data(), n, batch.data());
+  const auto stateBlocks = testing::toLaneBlocks(states.data(), n, 2);
+  compiled.evaluateLaneBlocks(stateBlocks.data(), n / 4, blocks.data());
   std::vector<double> expected(k), viaJit(k), viaFast(k);
   for (std::size_t i = 0; i < n; ++i) {
     const double* x = states.data() + 2 * i;
@@ -87,6 +89,11 @@ TEST_P(Opcode, AgreesOnEveryPairOfEdgeValues) {
       ASSERT_TRUE(testing::sameBits(expected[j], batch[i * k + j]))
           << expr::info(op).name << " feature " << j << " state (" << x[0] << ", " << x[1]
           << "): " << expected[j] << " vs batch " << batch[i * k + j];
+      if (i < n / 4 * 4) {
+        ASSERT_TRUE(testing::sameBits(expected[j], testing::laneBlockValue(blocks.data(), i, j, k)))
+            << expr::info(op).name << " feature " << j << " state (" << x[0] << ", " << x[1]
+            << "): lane blocks";
+      }
     }
   }
 }

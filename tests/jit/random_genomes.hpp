@@ -130,4 +130,20 @@ inline bool sameBits(double a, double b) {
   return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
+// The first n / 4 * 4 of n states (rows of `dim` values) as lane blocks
+// (FeatureMap::evaluateLaneBlocks: variable i of state l at [(l / 4 * dim + i) * 4 + l % 4]).
+inline std::vector<double> toLaneBlocks(const double* states, std::size_t n, std::size_t dim) {
+  std::vector<double> blocks(n / 4 * 4 * dim);
+  for (std::size_t l = 0; l < n / 4 * 4; ++l) {
+    for (std::size_t i = 0; i < dim; ++i)
+      blocks[(l / 4 * dim + i) * 4 + l % 4] = states[l * dim + i];
+  }
+  return blocks;
+}
+
+// Feature j of state l in lane blocks of k features.
+inline double laneBlockValue(const double* blocks, std::size_t l, std::size_t j, std::size_t k) {
+  return blocks[(l / 4 * k + j) * 4 + l % 4];
+}
+
 }  // namespace gpfd::jit::testing

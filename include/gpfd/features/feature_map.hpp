@@ -37,6 +37,7 @@ class RawFeatureMap final : public FeatureMap {
   std::size_t inputDim() const override { return dim_; }
   std::size_t outputDim() const override { return dim_; }
   void evaluate(const double* state, double* features) const override;
+  void evaluateLaneBlocks(const double* blocks, std::size_t groups, double* out) const override;
   bool isIdentity() const override { return true; }
 
  private:

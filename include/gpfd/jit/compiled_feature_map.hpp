@@ -1,5 +1,6 @@
 // jit: a genome's features as native code: the whole genome is one function
-// void(const double* state, double* features), plus an AVX2 batch kernel where the CPU has AVX2.
+// void(const double* state, double* features), plus two AVX2 batch kernels (state rows, lane
+// blocks) where the CPU has AVX2.
 // It owns its code (released when the map dies) and behaves exactly like the interpreters
 // (bit-identical features), so a learner cannot tell which one it got. When native code cannot
 // be used (a build without the JIT, a non-x86-64 host, GPFD_NO_JIT=1 in the environment, or an
@@ -38,8 +39,9 @@ class CompiledFeatureMap final : public features::FeatureMap {
 
   // Whether evaluate() runs native code; otherwise fallbackReason() says why not.
   bool isNative() const { return scalar_ != nullptr; }
-  // Whether evaluateBatch() runs the AVX2 kernel (4 states per iteration).
+  // Whether evaluateBatch() and evaluateLaneBlocks() run AVX2 kernels (4 states per iteration).
   bool hasNativeBatch() const { return batch_ != nullptr; }
+  bool hasNativeLaneBlocks() const { return blocks_ != nullptr; }
   const std::string& fallbackReason() const { return reason_; }
   const Program& program() const { return interpreter_.program(); }
 

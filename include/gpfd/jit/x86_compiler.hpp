@@ -6,13 +6,13 @@
 // - ScalarFunction: features[k] = output k on one state, scalar SSE2 code.
 // - BatchKernel: `groups` groups of 4 consecutive states (states: groups*4*inputDim doubles, out:
 //   groups*4*outputDim doubles), AVX2 code with one state per ymm lane.
-// - Lane-block kernel (same signature): the states of a group in a block of inputDim rows of 4
-//   lanes, variable i of lane l at states[(g * inputDim + i) * 4 + l]; features likewise
-//   (out[(g * outputDim + k) * 4 + l]). A row of a block is one load or store, where the state-row
-//   layout needs four loads and a shuffle (the lockstep learners' layout).
-// Both read only state[0, inputDim) per state and write only features[0, outputDim); results are
-// bit-identical to expr::evaluate (the protected semantics of expr/ops.hpp; sin, cos, exp, log and
-// tanh call the same libm functions as the interpreter). State and feature buffers must not
+// - Lane-block kernel (same signature), the lockstep learners' layout: the states of a group in a
+//   block of inputDim rows of 4 lanes, variable i of lane l at states[(g * inputDim + i) * 4 + l];
+//   features likewise (out[(g * outputDim + k) * 4 + l]). A variable is one load and a feature one
+//   store, where state rows need four loads and a shuffle per variable.
+// All three read only state[0, inputDim) per state and write only features[0, outputDim); results
+// are bit-identical to expr::evaluate (the protected semantics of expr/ops.hpp; sin, cos, exp, log
+// and tanh call the same libm functions as the interpreter). State and feature buffers must not
 // overlap.
 #pragma once
 
