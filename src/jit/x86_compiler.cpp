@@ -461,17 +461,18 @@ class Emitter {
   void variable(std::uint32_t v, std::uint16_t var) {
     const int d = allocate(0);
     const auto disp = static_cast<std::int32_t>(8 * var);
-    if (blocks_) {
-      a_.vmovupd(x86::ymm(d), x86::ptr(state_, 4 * disp));  // The variable's four lanes.
-      a_.vcmppd(x86::ymm(kScratchB), x86::ymm(d), x86::ymm(d), 7);
-    } else if (batch_) {
-      const auto row = static_cast<std::int32_t>(8 * p_.inputDim);
-      const x86::Xmm dx = x86::xmm(d), s = x86::xmm(kScratchB);
-      a_.vmovsd(dx, x86::ptr(state_, disp));
-      a_.vmovhpd(dx, dx, x86::ptr(state_, disp + row));
-      a_.vmovsd(s, x86::ptr(state_, disp + 2 * row));
-      a_.vmovhpd(s, s, x86::ptr(state_, disp + 3 * row));
-      a_.vinsertf128(x86::ymm(d), x86::ymm(d), s, 1);
+    if (batch_) {
+      if (blocks_) {
+        a_.vmovupd(x86::ymm(d), x86::ptr(state_, 4 * disp));  // The variable's four lanes.
+      } else {
+        const auto row = static_cast<std::int32_t>(8 * p_.inputDim);
+        const x86::Xmm dx = x86::xmm(d), s = x86::xmm(kScratchB);
+        a_.vmovsd(dx, x86::ptr(state_, disp));
+        a_.vmovhpd(dx, dx, x86::ptr(state_, disp + row));
+        a_.vmovsd(s, x86::ptr(state_, disp + 2 * row));
+        a_.vmovhpd(s, s, x86::ptr(state_, disp + 3 * row));
+        a_.vinsertf128(x86::ymm(d), x86::ymm(d), s, 1);
+      }
       a_.vcmppd(x86::ymm(kScratchB), x86::ymm(d), x86::ymm(d), 7);  // Ordered: not NaN.
     } else {
       a_.movsd(x86::xmm(d), x86::ptr(state_, disp));

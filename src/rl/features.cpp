@@ -19,14 +19,15 @@ void FeatureMoments::clear() {
   std::fill(m2.begin(), m2.end(), 0.0);
 }
 
-void FeatureMoments::add(const double* row) {
+void FeatureMoments::add(const double* row, std::size_t stride) {
   ++count;
   const double n = static_cast<double>(count);
   for (std::size_t j = 0; j < mean.size(); ++j) {
     // Welford's update of the running mean and sum of squared deviations.
-    const double delta = row[j] - mean[j];
+    const double x = row[j * stride];
+    const double delta = x - mean[j];
     mean[j] += delta / n;
-    m2[j] += delta * (row[j] - mean[j]);
+    m2[j] += delta * (x - mean[j]);
   }
 }
 

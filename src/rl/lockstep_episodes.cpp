@@ -37,7 +37,6 @@ class LockstepPlayer final : public Player {
         io_(store_.buffers()),
         blocks_(stride_ * std::max(stateDim_, std::size_t{1}), 0.0),
         raw_(stride_ * std::max(rawDim_, std::size_t{1}), 0.0),
-        rawRow_(rawDim_, 0.0),
         phi_(dim_ * stride_, 1.0),  // The bias row, if any, stays 1.
         mu_(outputs_ * stride_, 0.0),
         eps_(stride_, 0.0),
@@ -103,10 +102,8 @@ class LockstepPlayer final : public Player {
                                 scale_.data(), failed_.data());
     if (moments == nullptr) return;
     for (std::size_t l = 0; l < active; ++l) {
-      if (failed_[l]) continue;
-      const double* block = raw_.data() + l / 4 * 4 * rawDim_ + l % 4;
-      for (std::size_t j = 0; j < rawDim_; ++j) rawRow_[j] = block[4 * j];
-      (*moments)[episode_[l]].add(rawRow_.data());
+      // Lane l's raw features: feature j at [(l / 4 * rawDim_ + j) * 4 + l % 4].
+      if (!failed_[l]) (*moments)[episode_[l]].add(raw_.data() + l / 4 * 4 * rawDim_ + l % 4, 4);
     }
   }
 
@@ -266,7 +263,6 @@ class LockstepPlayer final : public Player {
   env::BatchStorage store_;  // The environment's lanes: structure of arrays, `stride_` apart.
   env::BatchBuffers& io_;
   std::vector<double> blocks_, raw_;  // States and raw features in lane blocks (the map's layout).
-  std::vector<double> rawRow_;        // One lane's raw features.
   std::vector<double> phi_, mu_, eps_, coefficient_, choiceCoefficient_, logits_, eligibility_;
   std::vector<double> weights_, sd_, shift_, scale_;  // Each lane's run's parameters.
   std::vector<double> weight_;                        // Discount weight of the next reward.

@@ -51,12 +51,12 @@ void checkAndNormaliseT(const Rows& rows, double* phi, std::size_t dim, const do
 template <class T>
 void copyBlocksT(const Rows& rows, const double* from, std::size_t dim, double* to, bool toRows) {
   for (std::size_t l = 0; l < rows.lanes; l += 4) {
-    const std::size_t block = l * dim;  // (l / 4) * 4 * dim.
     for (std::size_t i = 0; i < dim; ++i) {
-      const std::size_t row = i * rows.stride + l, inBlock = block + 4 * i;
-      for (std::size_t k = 0; k < 4; k += lanes::kWidth<T>) {
-        store(to + (toRows ? row : inBlock) + k, loadAs<T>(from + (toRows ? inBlock : row) + k));
-      }
+      // l is a multiple of 4: lane block l / 4 starts at l * dim.
+      const std::size_t row = i * rows.stride + l, block = l * dim + 4 * i;
+      const double* src = from + (toRows ? block : row);
+      double* dst = to + (toRows ? row : block);
+      for (std::size_t k = 0; k < 4; k += lanes::kWidth<T>) store(dst + k, loadAs<T>(src + k));
     }
   }
 }

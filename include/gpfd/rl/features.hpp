@@ -41,7 +41,8 @@ struct FeatureMoments {
 
   explicit FeatureMoments(std::size_t dim = 0) : mean(dim, 0.0), m2(dim, 0.0) {}
   void clear();
-  void add(const double* row);
+  // Adds one row, value j at row[j * stride].
+  void add(const double* row, std::size_t stride = 1);
   // Adds the rows summarised by `other` (Chan, Golub & LeVeque 1979, pairwise update).
   void merge(const FeatureMoments& other);
 };
