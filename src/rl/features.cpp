@@ -47,25 +47,37 @@ void FeatureMoments::merge(const FeatureMoments& other) {
   count += other.count;
 }
 
-bool FeaturePipeline::transform(double* row) const {
+namespace {
+
+// True when every one of the n values is finite (one pass, no early exit: rows are short).
+bool allFinite(const double* row, std::size_t n) {
   bool finite = true;
-  for (std::size_t j = 0; j < raw_; ++j) finite = finite && std::isfinite(row[j]);
-  if (!finite) return false;
+  for (std::size_t j = 0; j < n; ++j) finite &= std::isfinite(row[j]);
+  return finite;
+}
+
+}  // namespace
+
+bool FeaturePipeline::transform(double* row) const {
+  if (!allFinite(row, raw_)) return false;
+  normaliseAndBias(row);
+  return true;
+}
+
+void FeaturePipeline::normaliseAndBias(double* row) const {
   if (options_.normalise) {
     for (std::size_t j = 0; j < raw_; ++j) row[j] = (row[j] - shift_[j]) / scale_[j];
   }
   if (options_.bias) row[raw_] = 1.0;
-  return true;
 }
 
 void FeaturePipeline::merge(const FeatureMoments& moments) { moments_.merge(moments); }
 
 bool FeaturePipeline::finish(double* row) {
-  bool finite = true;
-  for (std::size_t j = 0; j < raw_; ++j) finite = finite && std::isfinite(row[j]);
-  if (!finite) return false;
+  if (!allFinite(row, raw_)) return false;
   if (options_.normalise) moments_.add(row);
-  return transform(row);
+  normaliseAndBias(row);
+  return true;
 }
 
 bool FeaturePipeline::evaluate(const double* state, double* out) {

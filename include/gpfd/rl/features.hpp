@@ -85,6 +85,7 @@ class FeaturePipeline {
 
  private:
   bool finish(double* row);  // Record statistics, normalise, append the bias; false if not finite.
+  void normaliseAndBias(double* row) const;  // transform of a row known to be finite.
 
   const features::FeatureMap* map_;
   FeatureOptions options_;
