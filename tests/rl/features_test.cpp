@@ -30,6 +30,33 @@ TEST(FeaturePipeline, ReportsNonFinite) {
   EXPECT_FALSE(features.evaluateBatch(state, 2, out));
 }
 
+// A NaN or infinity in any position fails the row and leaves the statistics alone: the moments
+// after good rows and bad ones are those of the good rows.
+TEST(FeaturePipeline, NonFiniteRowsFailAndAreNotCounted) {
+  const features::RawFeatureMap raw(3);
+  const FeatureOptions options{.bias = true, .normalise = true};
+  FeaturePipeline withBad(raw, options), goodOnly(raw, options);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const double good[2][3] = {{1.0, 2.0, 3.0}, {3.0, 0.0, -1.0}};
+  const double bad[3][3] = {{nan, 2.0, 3.0}, {1.0, -inf, 3.0}, {1.0, 2.0, nan}};
+  double out[4];
+  for (const auto& row : good) {
+    ASSERT_TRUE(withBad.evaluate(row, out));
+    ASSERT_TRUE(goodOnly.evaluate(row, out));
+  }
+  for (const auto& row : bad) {
+    EXPECT_FALSE(withBad.evaluate(row, out));
+    double copy[4] = {row[0], row[1], row[2], 0.0};
+    EXPECT_FALSE(withBad.transform(copy));
+  }
+  double w1[4] = {1.0, 1.0, 1.0, 0.0}, w2[4] = {1.0, 1.0, 1.0, 0.0};
+  withBad.refresh(w1, 1);
+  goodOnly.refresh(w2, 1);
+  EXPECT_EQ(withBad.shift(), goodOnly.shift());
+  EXPECT_EQ(withBad.scale(), goodOnly.scale());
+}
+
 TEST(FeaturePipeline, RefreshNormalisesAndKeepsOutputs) {
   const features::RawFeatureMap raw(2);
   FeaturePipeline features(raw, {.bias = true, .normalise = true});
