@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gpfd/util/finite.hpp"
+
 namespace gpfd::rl {
 
 FeaturePipeline::FeaturePipeline(const features::FeatureMap& map, const FeatureOptions& options)
@@ -47,19 +49,8 @@ void FeatureMoments::merge(const FeatureMoments& other) {
   count += other.count;
 }
 
-namespace {
-
-// True when every one of the n values is finite (one pass, no early exit: rows are short).
-bool allFinite(const double* row, std::size_t n) {
-  bool finite = true;
-  for (std::size_t j = 0; j < n; ++j) finite &= std::isfinite(row[j]);
-  return finite;
-}
-
-}  // namespace
-
 bool FeaturePipeline::transform(double* row) const {
-  if (!allFinite(row, raw_)) return false;
+  if (!allFinite({row, raw_})) return false;
   normaliseAndBias(row);
   return true;
 }
@@ -74,7 +65,7 @@ void FeaturePipeline::normaliseAndBias(double* row) const {
 void FeaturePipeline::merge(const FeatureMoments& moments) { moments_.merge(moments); }
 
 bool FeaturePipeline::finish(double* row) {
-  if (!allFinite(row, raw_)) return false;
+  if (!allFinite({row, raw_})) return false;
   if (options_.normalise) moments_.add(row);
   normaliseAndBias(row);
   return true;

@@ -1,22 +1,10 @@
 #include "gpfd/run/state_sample.hpp"
 
-#include <cmath>
-
 #include "gpfd/expr/eval.hpp"
 #include "gpfd/util/error.hpp"
+#include "gpfd/util/finite.hpp"
 
 namespace gpfd::run {
-namespace {
-
-bool allFinite(std::span<const double> values) {
-  for (const double v : values) {
-    if (!std::isfinite(v)) return false;
-  }
-  return true;
-}
-
-}  // namespace
-
 std::vector<double> sampleVisitedStates(env::Environment& environment, std::size_t count,
                                         std::uint64_t seed, int maxEpisodeSteps) {
   Rng rng(seed);
