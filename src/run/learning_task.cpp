@@ -99,15 +99,17 @@ bool isIdentity(const expr::Genome& genome, std::size_t stateDim) {
 std::shared_ptr<const features::FeatureMap> genomeFeatureMap(const expr::Genome& genome,
                                                              std::size_t stateDim,
                                                              bool withOriginal) {
-  // The original variables added to themselves would only repeat every column.
-  if (withOriginal && isIdentity(genome, stateDim)) {
+  if (!withOriginal) return std::make_shared<const jit::CompiledFeatureMap>(genome, stateDim);
+  // The original variables added to themselves would only repeat every column; placeholders
+  // (run/redundancy.hpp) stand for no feature.
+  const auto added = withoutPlaceholders(genome);
+  if (added.featureCount() == 0 || isIdentity(added, stateDim)) {
     return std::make_shared<const features::RawFeatureMap>(stateDim);
   }
-  auto compiled = std::make_shared<const jit::CompiledFeatureMap>(genome, stateDim);
-  if (!withOriginal) return compiled;
   return std::make_shared<const features::ConcatFeatureMap>(
       std::vector<std::shared_ptr<const features::FeatureMap>>{
-          compiled, std::make_shared<const features::RawFeatureMap>(stateDim)});
+          std::make_shared<const jit::CompiledFeatureMap>(added, stateDim),
+          std::make_shared<const features::RawFeatureMap>(stateDim)});
 }
 
 double trialFitness(const LearningTask& task, const expr::Genome& genome, Rng& rng) {

@@ -52,7 +52,7 @@ expr::Genome RedundancyFilter::operator()(const expr::Genome& genome) const {
     kept += keep[k] ? 1 : 0;
   }
   for (std::size_t k = 0; k < genome.featureCount() && kept < std::size_t(minFeatures_); ++k) {
-    if (!keep[k]) {
+    if (!keep[k] && !withOriginal_) {
       keep[k] = true;
       ++kept;
     }
@@ -61,6 +61,27 @@ expr::Genome RedundancyFilter::operator()(const expr::Genome& genome) const {
   expr::Genome out;
   for (std::size_t k = 0; k < genome.featureCount(); ++k) {
     if (keep[k]) out.addFeature(genome.feature(k));
+  }
+  const expr::Node placeholder[] = {expr::Node::constant(0.0)};
+  while (out.featureCount() < std::size_t(minFeatures_)) out.addFeature(placeholder);
+  return out;
+}
+
+bool isPlaceholder(expr::TreeView feature) {
+  return feature.size() == 1 && feature[0].op == expr::Op::Const && feature[0].value == 0.0;
+}
+
+bool onlyPlaceholders(const expr::Genome& genome) {
+  for (std::size_t k = 0; k < genome.featureCount(); ++k) {
+    if (!isPlaceholder(genome.feature(k))) return false;
+  }
+  return true;
+}
+
+expr::Genome withoutPlaceholders(const expr::Genome& genome) {
+  expr::Genome out;
+  for (std::size_t k = 0; k < genome.featureCount(); ++k) {
+    if (!isPlaceholder(genome.feature(k))) out.addFeature(genome.feature(k));
   }
   return out;
 }

@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "gpfd/expr/print.hpp"
+#include "gpfd/run/redundancy.hpp"
 #include "gpfd/run/run_grid.hpp"
 
 namespace gpfd::run {
@@ -64,6 +65,9 @@ std::vector<HallOfFameEntry> hallOfFame(const std::map<std::string, gp::FitnessR
   for (const auto& [key, record] : cache) {
     if (!std::isfinite(record.mean)) continue;
     expr::Genome genome = gp::genomeFromKey(key);
+    // Placeholders alone show the learner nothing beside the original variables, which are
+    // always a candidate, or nothing at all without them.
+    if (onlyPlaceholders(genome)) continue;
     const double fitness = record.mean - sizePenalty * static_cast<double>(genome.size());
     all.push_back({key, std::move(genome), fitness, record.trials});
   }

@@ -7,6 +7,7 @@
 #include "gpfd/env/environment.hpp"
 #include "gpfd/expr/parse.hpp"
 #include "gpfd/expr/print.hpp"
+#include "gpfd/run/learning_task.hpp"
 
 namespace gpfd::run {
 namespace {
@@ -63,10 +64,40 @@ TEST(Redundancy, WithTheOriginalVariablesTheirCombinationsAreRedundant) {
 }
 
 TEST(Redundancy, KeepsTheMinimumNumberOfFeatures) {
+  const RedundancyFilter one(cartPoleSample(), false, 1);
+  EXPECT_EQ(infix(one(genome({"1.5", "2 * 1.5"}))), (std::vector<std::string>{"1.5"}));
+  const RedundancyFilter two(cartPoleSample(), false, 2);
+  EXPECT_EQ(infix(two(genome({"x", "2 * x", "3 * x"}))), (std::vector<std::string>{"x", "2 * x"}));
+}
+
+TEST(Redundancy, BesideTheOriginalVariablesPlaceholdersFillTheMinimum) {
+  // A copy of an original variable would double that direction's Rprop steps: the constant 0
+  // takes its place, and the feature map leaves it out.
   const RedundancyFilter one(cartPoleSample(), true, 1);
-  EXPECT_EQ(infix(one(genome({"x", "dx"}))), (std::vector<std::string>{"x"}));
+  const auto none = one(genome({"x", "2 * dx - th"}));
+  EXPECT_EQ(infix(none), (std::vector<std::string>{"0"}));
+  EXPECT_TRUE(onlyPlaceholders(none));
+  EXPECT_EQ(withoutPlaceholders(none).featureCount(), 0u);
   const RedundancyFilter two(cartPoleSample(), true, 2);
-  EXPECT_EQ(infix(two(genome({"x", "dx", "th"}))), (std::vector<std::string>{"x", "dx"}));
+  const auto some = two(genome({"x", "sin(th)", "dx"}));
+  EXPECT_EQ(infix(some), (std::vector<std::string>{"sin(th)", "0"}));
+  EXPECT_FALSE(onlyPlaceholders(some));
+  EXPECT_EQ(infix(withoutPlaceholders(some)), (std::vector<std::string>{"sin(th)"}));
+  EXPECT_EQ(infix(one(none)), (std::vector<std::string>{"0"}));  // Idempotent.
+}
+
+TEST(Redundancy, TheFeatureMapLeavesPlaceholdersOut) {
+  const auto alone = genomeFeatureMap(genome({"0"}), 4, true);
+  EXPECT_TRUE(alone->isIdentity());  // The original variables, once.
+  const auto some = genomeFeatureMap(genome({"sin(th)", "0"}), 4, true);
+  ASSERT_EQ(some->outputDim(), 5u);
+  const double state[4] = {0.1, -0.2, 0.3, 0.4};
+  double features[5];
+  some->evaluate(state, features);
+  EXPECT_DOUBLE_EQ(features[0], std::sin(0.3));
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(features[1 + i], state[i]);
+  // Without the original variables the constant 0 is an ordinary (useless) feature.
+  EXPECT_EQ(genomeFeatureMap(genome({"sin(th)", "0"}), 4, false)->outputDim(), 2u);
 }
 
 TEST(Normalise, GivesZeroMeanAndUnitDeviationOnTheSample) {

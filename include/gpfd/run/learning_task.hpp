@@ -60,8 +60,9 @@ class LearningTask {
 };
 
 // The features a learner sees for a genome: its compiled features, followed by the original
-// state variables when `withOriginal` (only once when the genome is the variables themselves,
-// as a run's best.features is when no discovered set beat them).
+// state variables when `withOriginal`, placeholders (run/redundancy.hpp) left out; only the
+// variables when nothing else remains or the genome is the variables themselves (as a run's
+// best.features is when no discovered set beat them).
 std::shared_ptr<const features::FeatureMap> genomeFeatureMap(const expr::Genome& genome,
                                                              std::size_t stateDim,
                                                              bool withOriginal);

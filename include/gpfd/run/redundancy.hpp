@@ -20,7 +20,9 @@ inline constexpr double kDependenceTolerance = 1e-8;
 
 class RedundancyFilter {
  public:
-  // `minFeatures`: dropped features are kept back, first first, while fewer remain.
+  // `minFeatures`: while fewer features remain, dropped ones are kept back, first first; when the
+  // learner sees the original variables too, the constant 0 (a placeholder) is kept instead, so
+  // that no set hands the learner a second copy of a direction it already has.
   RedundancyFilter(std::shared_ptr<const FeatureSample> sample, bool withOriginal, int minFeatures);
   // The genome without its redundant features, the others in their order.
   expr::Genome operator()(const expr::Genome& genome) const;
@@ -30,6 +32,14 @@ class RedundancyFilter {
   bool withOriginal_;
   int minFeatures_;
 };
+
+// The placeholder: the constant 0 as a feature. Beside the original variables it stands for "no
+// feature": the learner's feature map leaves it out, and a set of placeholders alone is the
+// original variables, which validation always scores anyway.
+bool isPlaceholder(expr::TreeView feature);
+bool onlyPlaceholders(const expr::Genome& genome);
+// The genome without its placeholders (possibly empty).
+expr::Genome withoutPlaceholders(const expr::Genome& genome);
 
 // Each feature rescaled to zero mean and unit standard deviation on the sample, as an
 // expression: f -> (f - mean) * (1 / sd). Features constant on the sample are left alone.

@@ -64,8 +64,8 @@ struct HallOfFameEntry {
   int trials = 0;
 };
 
-// The `size` distinct genomes of the cache with the best penalised mean fitness (finite only),
-// best first; ties keep key order.
+// The `size` distinct genomes of the cache with the best penalised mean fitness (finite only,
+// placeholders alone left out: run/redundancy.hpp), best first; ties keep key order.
 std::vector<HallOfFameEntry> hallOfFame(const std::map<std::string, gp::FitnessRecord>& cache,
                                         int size, double sizePenalty);
 
