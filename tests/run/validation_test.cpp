@@ -6,6 +6,8 @@
 #include <cmath>
 
 #include "gpfd/expr/parse.hpp"
+#include "gpfd/expr/print.hpp"
+#include "gpfd/run/learning_task.hpp"
 #include "gpfd/run/method_verdict.hpp"
 #include "gpfd/util/error.hpp"
 
@@ -97,6 +99,20 @@ TEST(Validation, ConfirmationDecidesAndIsWhatIsReported) {
   state.sets.push_back(set("dx", {5, 5, 5}));  // A new winner: the old confirmation is stale.
   EXPECT_EQ(returnedIndex(state, 4), 3u);
   EXPECT_FALSE(reportedScores(state, 4).confirmed);
+}
+
+TEST(Validation, TheReturnedFileLeavesPlaceholdersOut) {
+  auto config = loadExperimentConfig(std::string(GPFD_SOURCE_DIR) + "/configs/cartpole-quick.toml");
+  config.withOriginal = true;
+  const LearningTask task(config, LearningTask::Budget::Validation);
+  ValidationState state;
+  state.sets = {set("", {1, 2, 3}), set("sin(th)", {3, 3, 3})};
+  const expr::Node placeholder[] = {expr::Node::constant(0.0)};
+  state.sets[1].genome.addFeature(placeholder);  // As min_features = 2 would leave it.
+  state.sets[1].key = gp::canonicalKey(state.sets[1].genome);
+  const auto file = returnedFeaturesFile(state, state.sets[1].genome, task);
+  ASSERT_EQ(file.genome.featureCount(), 1u);
+  EXPECT_EQ(expr::toInfix(file.genome.feature(0), kNames), "sin(th)");
 }
 
 TEST(MethodVerdict, CountsRunsAndReadsBack) {
