@@ -39,7 +39,9 @@ LearningTask::LearningTask(const ExperimentConfig& config, Budget budget)
 }
 
 expr::Genome LearningTask::prepared(const expr::Genome& genome) const {
-  return config_.normalise ? normaliseFeatures(genome, *sample_) : genome;
+  // Placeholders fill min_features for the GP only (run/redundancy.hpp).
+  const auto seen = config_.withOriginal ? withoutPlaceholders(genome) : genome;
+  return config_.normalise ? normaliseFeatures(seen, *sample_) : seen;
 }
 
 std::shared_ptr<const features::FeatureMap> LearningTask::featureMap(

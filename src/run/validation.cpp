@@ -288,10 +288,7 @@ expr::FeaturesFile returnedFeaturesFile(const ValidationState& state, const expr
   expr::FeaturesFile file;
   file.env = config.env;
   file.variables = task.stateNames();
-  // Placeholders fill min_features for the GP only: the learner never sees them.
-  file.genome = set.isOriginal()      ? identityGenome(dim)
-                : config.withOriginal ? withoutPlaceholders(prepared)
-                                      : prepared;
+  file.genome = set.isOriginal() ? identityGenome(dim) : prepared;
   file.meta["experiment"] = config.name;
   file.meta["seed"] = std::to_string(config.seed);
   file.meta["validated"] = formatMeanSe(summarize(*reported.returned));

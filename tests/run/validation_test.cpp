@@ -104,13 +104,13 @@ TEST(Validation, ConfirmationDecidesAndIsWhatIsReported) {
 TEST(Validation, TheReturnedFileLeavesPlaceholdersOut) {
   auto config = loadExperimentConfig(std::string(GPFD_SOURCE_DIR) + "/configs/cartpole-quick.toml");
   config.withOriginal = true;
+  config.normalise = false;  // The expression as written.
   const LearningTask task(config, LearningTask::Budget::Validation);
   ValidationState state;
   state.sets = {set("", {1, 2, 3}), set("sin(th)", {3, 3, 3})};
-  const expr::Node placeholder[] = {expr::Node::constant(0.0)};
-  state.sets[1].genome.addFeature(placeholder);  // As min_features = 2 would leave it.
+  state.sets[1].genome.addFeature(expr::parseInfix("0", kNames));  // As min_features = 2 leaves it.
   state.sets[1].key = gp::canonicalKey(state.sets[1].genome);
-  const auto file = returnedFeaturesFile(state, state.sets[1].genome, task);
+  const auto file = returnedFeaturesFile(state, task.prepared(state.sets[1].genome), task);
   ASSERT_EQ(file.genome.featureCount(), 1u);
   EXPECT_EQ(expr::toInfix(file.genome.feature(0), kNames), "sin(th)");
 }

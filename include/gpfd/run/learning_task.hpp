@@ -34,8 +34,9 @@ class LearningTask {
   // States visited under random actions (config.stateSample of them, seeded from the run's
   // seed), the same on every process that builds the task from the same config.
   const std::shared_ptr<const FeatureSample>& stateSample() const { return sample_; }
-  // The features a learner sees for a genome in GP and validation: the genome, normalised when
-  // config.normalise, followed by the original variables when config.withOriginal.
+  // The features a learner sees for a genome in GP and validation: the genome (without
+  // placeholders when config.withOriginal: run/redundancy.hpp), normalised when config.normalise;
+  // featureMap follows them with the original variables when config.withOriginal.
   expr::Genome prepared(const expr::Genome& genome) const;
   std::shared_ptr<const features::FeatureMap> featureMap(const expr::Genome& genome) const;
 

@@ -147,9 +147,8 @@ std::string formatFrontTable(const std::vector<ValidatedSet>& sets,
                              const std::vector<std::string>& stateNames);
 
 // The features file of what the run returns (`prepared`: its genome as the learner sees it,
-// e.g. normalised; without placeholders, run/redundancy.hpp), with `# validated` (the reported
-// score), `# validated_by`, `# selection` (the validation score that chose it), `# original` and `#
-// verdict` lines.
+// LearningTask::prepared), with `# validated` (the reported score), `# validated_by`,
+// `# selection` (the validation score that chose it), `# original` and `# verdict` lines.
 expr::FeaturesFile returnedFeaturesFile(const ValidationState& state, const expr::Genome& prepared,
                                         const LearningTask& task);
 
