@@ -294,12 +294,7 @@ int evolve(const EvolveOptions& o) {
     }
     return runDiscovery(*discovery, options.outDir, "", options.outDir, o.quiet);
   }
-  if (std::filesystem::exists(options.outDir + "/runs.json") ||
-      std::filesystem::exists(options.outDir + "/checkpoint.json")) {
-    throw InputError(
-        "the directory already holds runs: resume them with --resume, or choose another --out",
-        options.outDir);
-  }
+  run::refuseExistingRuns(options.outDir);
   run::validate(config);
   createDirectories(options.outDir, "results directory");
   writeFileAtomically(options.outDir + "/config.toml", run::formatExperimentConfig(config));

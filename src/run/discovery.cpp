@@ -208,18 +208,22 @@ struct Discovery::State {
   }
 };
 
+void refuseExistingRuns(const std::string& dir) {
+  if (fs::exists(dir + "/checkpoint.json") || fs::exists(dir + "/runs.json")) {
+    throw InputError(
+        "the directory already holds a run or a set of runs: resume it with --resume, or choose "
+        "another --out",
+        dir);
+  }
+}
+
 Discovery::Discovery(std::unique_ptr<State> state) : s_(std::move(state)) {}
 Discovery::~Discovery() = default;
 
 std::unique_ptr<Discovery> Discovery::start(const ExperimentConfig& config,
                                             const DiscoveryOptions& options) {
   validate(config);
-  if (fs::exists(options.outDir + "/checkpoint.json")) {
-    throw InputError(
-        "the directory already holds a run: resume it with --resume, or choose "
-        "another --out",
-        options.outDir);
-  }
+  refuseExistingRuns(options.outDir);
   auto state = std::make_unique<State>(config, options);  // Compiles nothing yet; checks env.
   const bool existed = fs::exists(options.outDir);
   try {

@@ -169,8 +169,15 @@ TEST(Evolve, RunsMakeASetThatResumes) {
   ASSERT_EQ(resumed.status, 0) << resumed.output;
   EXPECT_EQ(fingerprint(dir + "/run-02"), second);
   EXPECT_EQ(readText(dir + "/runs.csv"), runs);
-  // A set is not started twice in one directory, and --runs does not go with --resume.
+  // A set is not started twice in one directory, nor a single run over it, and --runs does not
+  // go with --resume.
   EXPECT_EQ(runGpfd("evolve " + tinyConfig() + " --runs 2 --quiet --out " + dir).status, 2);
+  const auto over = runGpfd("evolve " + tinyConfig() + " --quiet --out " + dir);
+  EXPECT_EQ(over.status, 2);
+  EXPECT_NE(over.output.find("already holds a run or a set of runs"), std::string::npos)
+      << over.output;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/checkpoint.json"));
+  EXPECT_EQ(readText(dir + "/runs.csv"), runs);
   EXPECT_EQ(runGpfd("evolve --resume " + dir + " --runs 2").status, 2);
 }
 

@@ -44,10 +44,14 @@ struct DiscoveryOptions {
   int processes = 1;  // MPI processes of the run; recorded in run.json when above 1.
 };
 
+// InputError when `dir` already holds a run (checkpoint.json) or a set of runs (runs.json):
+// neither a run nor a set is ever started over either.
+void refuseExistingRuns(const std::string& dir);
+
 class Discovery {
  public:
-  // A fresh run in options.outDir, which must not already hold a run. Validates everything
-  // before creating anything; InputError otherwise.
+  // A fresh run in options.outDir, which must not already hold a run or a set of runs
+  // (refuseExistingRuns). Validates everything before creating anything; InputError otherwise.
   static std::unique_ptr<Discovery> start(const ExperimentConfig& config,
                                           const DiscoveryOptions& options);
   // Continues the run in options.outDir from its checkpoint, with its stored config. When
