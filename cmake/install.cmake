@@ -5,7 +5,7 @@ include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
 set(GPFD_INSTALLED_MODULES gpfd_util gpfd_expr gpfd_features gpfd_jit gpfd_env gpfd_rl gpfd_gp
-                           gpfd_io gpfd_run)
+                           gpfd_io gpfd_run gpfd_service)
 install(TARGETS ${GPFD_INSTALLED_MODULES} gpfd_core gpfd_plugin EXPORT gpfdTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS gpfd RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})

@@ -14,11 +14,7 @@ endif()
 find_package(nanobind CONFIG REQUIRED)
 
 file(GLOB GPFD_PYTHON_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/python/src/*.cpp)
-# `gpfd evolve`'s own config loading (shipped config names, overrides), so that gpfd.evolve
-# reads configs exactly as the command does.
-nanobind_add_module(_core NOMINSIZE NB_SUPPRESS_WARNINGS ${GPFD_PYTHON_SOURCES}
-                    ${PROJECT_SOURCE_DIR}/apps/gpfd/config_loading.cpp ${GPFD_BUILTIN_CONFIGS})
-target_include_directories(_core PRIVATE ${PROJECT_SOURCE_DIR}/apps/gpfd)
+nanobind_add_module(_core NOMINSIZE NB_SUPPRESS_WARNINGS ${GPFD_PYTHON_SOURCES})
 target_link_libraries(_core PRIVATE gpfd::core gpfd_version)
 target_compile_options(_core PRIVATE ${GPFD_WARNINGS})
 if(GPFD_JIT_AVAILABLE)

@@ -1,19 +1,14 @@
 // `gpfd assess`: the paper's test protocol for feature sets (long training, N runs, statistics).
+// The command only turns its flags into a service::AssessRequest (gpfd/service/assess.hpp).
 #include <fmt/format.h>
 
-#include <filesystem>
+#include <cstdio>
+#include <optional>
 
 #include "command.hpp"
-#include "config_loading.hpp"
-#include "gpfd/env/environment.hpp"
-#include "gpfd/expr/features_file.hpp"
-#include "gpfd/rl/learner.hpp"
-#include "gpfd/run/assessment.hpp"
-#include "gpfd/util/directory_lock.hpp"
+#include "gpfd/service/assess.hpp"
 #include "gpfd/util/error.hpp"
-#include "gpfd/util/number.hpp"
 #include "listings.hpp"
-#include "param_routing.hpp"
 
 namespace gpfd::app {
 namespace {
@@ -30,128 +25,37 @@ struct AssessOptions {
   std::vector<std::string> params;
   std::uint64_t seed = 1;
   int threads = 0;
-  std::string out;
+  std::optional<std::string> out;
   bool force = false;
   bool quiet = false;
 };
 
-// The budget of one assessment run (policy updates, iterations: the learner's budget parameter).
-long long runBudget(const run::ExperimentConfig& config) {
-  const auto& learner = rl::LearnerRegistry::global().info(config.learner);
-  auto params = config.learnerParams;
-  for (const auto& [k, v] : config.assessParams) params[k] = v;
-  if (const auto given = params.find(learner.budgetParam); given != params.end()) {
-    return parseInteger(given->second, learner.name + "." + learner.budgetParam);
-  }
-  for (const auto& spec : learner.params) {
-    if (spec.name == learner.budgetParam) {
-      return parseInteger(spec.defaultValue, learner.name + "." + learner.budgetParam);
-    }
-  }
-  return 0;
-}
-
-// The results directory: --out (refused when it holds an assessment, unless --force), or a fresh
-// results/assess-ENV (-2, -3, ... when taken), locked against other writers.
-DirectoryLock outputDirectory(const AssessOptions& o, const std::string& env) {
-  if (o.out.empty()) return DirectoryLock::lockFresh("results/assess-" + env);
-  DirectoryLock lock(o.out);
-  if (!o.force && std::filesystem::exists(o.out + "/summary.csv")) {
-    throw InputError(
-        "the directory already holds an assessment; pass --force to replace it, or choose "
-        "another --out",
-        o.out);
-  }
-  return lock;
-}
-
-run::ExperimentConfig assessConfig(const AssessOptions& o) {
-  run::ExperimentConfig config;
-  if (!o.config.empty()) {
-    config = loadConfig(o.config, {});
-    if (!o.env.empty() && o.env != config.env) {
-      throw InputError("the environment differs from the config's (" + config.env + ")", o.env);
-    }
-  } else {
-    if (o.env.empty()) throw InputError("give an environment or --config", "gpfd assess");
-    config.env = o.env;
-    config.learner = env::Registry::global().info(o.env).defaultLearner;
-  }
-  const auto routed = routeParams(o.params, env::Registry::global().info(config.env), "--param");
-  for (const auto& [key, value] : routed.env) config.envParams[key] = value;
-  for (const auto& [key, value] : routed.learner) config.assessParams[key] = value;
-  if (o.budget > 0) {
-    const auto& learner = rl::LearnerRegistry::global().info(config.learner);
-    config.assessParams[learner.budgetParam] = std::to_string(o.budget);
-  }
-  if (o.runs > 0) config.assessRuns = o.runs;
-  config.seed = o.seed;
-  run::validate(config);
-  return config;
+void print(const std::string& text) {
+  std::fputs(text.c_str(), stdout);
+  std::fflush(stdout);
 }
 
 int assess(const AssessOptions& o) {
-  const auto config = assessConfig(o);
-  const run::LearningTask task(config, run::LearningTask::Budget::Assessment);
-  const std::size_t dim = task.stateDim();
-  const auto raw = std::make_shared<const features::RawFeatureMap>(dim);
-
-  // Every input is read and checked before anything is written.
-  std::vector<run::FeatureSet> sets;
-  if (o.raw || !o.features.empty()) sets.push_back({"original", raw});
-  for (const auto& path : o.features) {
-    const auto file = expr::readFeaturesFile(path, task.stateNames(), config.env);
-    std::string name = std::filesystem::path(path).stem().string();
-    for (const auto& s : sets) {
-      if (s.name == name) name += "-" + std::to_string(sets.size());
-    }
-    // Assessed as GP evaluated them: with the original variables appended when the config's
-    // fitness.with_original says so; --with-original adds that variant as a further set.
-    const bool asEvolved = config.withOriginal;
-    sets.push_back({name + (asEvolved ? "+original" : ""),
-                    run::genomeFeatureMap(file.genome, dim, asEvolved)});
-    if (o.withOriginal && !asEvolved) {
-      sets.push_back({name + "+original", run::genomeFeatureMap(file.genome, dim, true)});
-    }
-  }
-  if (o.fourier > 0) sets.push_back(run::fourierFeatureSet(task, o.fourier));
-  if (sets.empty())
-    throw InputError("nothing to assess: give --features FILE... or --raw", "gpfd assess");
-  // Every run's curve is kept until the statistics are computed.
-  requireMemory(static_cast<double>(sets.size()) * config.assessRuns *
-                    static_cast<double>(runBudget(config) + 1) * sizeof(rl::CurvePoint),
-                "the learning curves of every run", "--runs, --budget");
-  const DirectoryLock lock = outputDirectory(o, config.env);
-  const std::string& out = lock.directory();
-
-  if (!o.quiet) {
-    fmt::print("gpfd assess: {} feature sets x {} runs on {} ({}), seed {}\n", sets.size(),
-               config.assessRuns, config.env, config.learner, config.seed);
-    std::fflush(stdout);
-  }
-  const auto result =
-      run::runAssessment(task, sets, config.assessRuns, config.seed, threads(o.threads));
-  const auto summary = run::summarizeAssessment(result, 0);
-  run::writeAssessment(out, result, summary, config.env + ": " + config.learner,
-                       rl::LearnerRegistry::global().info(config.learner).rowName);
-  int diverged = 0;
-  for (const auto& row : summary) diverged += row.diverged;
-  if (!o.quiet) {
-    for (const auto& row : summary) {
-      fmt::print(
-          "{:<24} final {:.6g} ± {:.3g} (Welch p {:.3g}, Mann-Whitney p {:.3g}, d {:.3g})  area "
-          "{:.6g} (Welch p {:.3g})\n",
-          row.name, row.final.mean, row.final.halfWidth, row.vsBaseline.welchP,
-          row.vsBaseline.mannWhitneyP, row.vsBaseline.cohenD, row.area.mean,
-          row.areaVsBaseline.welchP);
-    }
-    fmt::print("results in {}\n", out);
-  }
-  if (diverged > 0) {
+  service::AssessRequest request;
+  request.env = o.env;
+  request.config = o.config;
+  for (const auto& path : o.features)
+    request.features.push_back({.name = {}, .path = path, .file = {}});
+  request.raw = o.raw;
+  request.withOriginal = o.withOriginal;
+  request.fourier = o.fourier;
+  request.runs = o.runs;
+  request.budget = o.budget;
+  request.params = o.params;
+  request.seed = o.seed;
+  request.threads = o.threads;
+  request.out = {o.out, o.force, "--out"};
+  const auto result = service::assess(request, o.quiet ? service::TextSink{} : print);
+  if (result.diverged > 0) {
     throw NumericalError(fmt::format("{} of {} runs diverged (non-finite states, features or "
                                      "weights); summary.csv counts them per set",
-                                     diverged, sets.size() * config.assessRuns),
-                         out);
+                                     result.diverged, result.runs),
+                         result.dir);
   }
   return 0;
 }
@@ -191,8 +95,9 @@ const CommandRegistration registration{
           ->check(threadCount());
       cmd->add_option("--out", o->out,
                       "Output directory (default results/assess-ENV, or results/assess-ENV-N when "
-                      "taken)");
-      cmd->add_flag("--force", o->force, "Replace the assessment already in --out");
+                      "taken); one that already holds files needs --force");
+      cmd->add_flag("--force", o->force,
+                    "Write into an --out that already holds files (replacing an assessment there)");
       cmd->add_flag("--quiet", o->quiet, "Print nothing");
       return [o] { return assess(*o); };
     }};

@@ -8,6 +8,7 @@
 #include "gpfd/expr/simplify.hpp"
 #include "gpfd/run/thread_evaluator.hpp"
 #include "gpfd/run/toy_task.hpp"
+#include "gpfd/service/resources.hpp"
 #include "gpfd/util/directory_lock.hpp"
 #include "gpfd/util/error.hpp"
 
@@ -32,7 +33,7 @@ int runToy(const ToyOptions& o) {
 
   const run::ToyTask task(o.samples, deriveSeed(o.seed, 7));
   run::ThreadEvaluator evaluator([&task](const expr::Genome& g, Rng&) { return task.rSquared(g); },
-                                 threads(o.threads));
+                                 service::usableThreads(o.threads));
   gp::Evolution evolution(config, run::toySearchSpace(), evaluator);
   evolution.run([&](const gp::GenerationStats& s) {
     if (!o.quiet) {

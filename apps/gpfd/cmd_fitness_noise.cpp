@@ -8,6 +8,7 @@
 #include "gpfd/gp/fitness_cache.hpp"
 #include "gpfd/run/checkpoint.hpp"
 #include "gpfd/run/fitness_noise.hpp"
+#include "gpfd/service/resources.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
 
@@ -40,7 +41,7 @@ int fitnessNoise(const NoiseOptions& o) {
       config.name, o.run, genomes.size(), o.pairs, o.replications, config.trials);
   std::fflush(stdout);
   const auto report = run::measureFitnessNoise(config, genomes, o.pairs, o.replications, o.seed,
-                                               threads(o.threads));
+                                               service::usableThreads(o.threads));
   fmt::print("pair  sd(a)     sd(b)     var(a-b) paired  var(a-b) unpaired\n");
   for (std::size_t p = 0; p < report.pairs.size(); ++p) {
     const auto& pair = report.pairs[p];

@@ -3,9 +3,10 @@
 
 #include "bench_jit.hpp"
 #include "command.hpp"
-#include "config_loading.hpp"
 #include "gpfd/jit/x86_compiler.hpp"
 #include "gpfd/run/reproduce.hpp"
+#include "gpfd/service/configs.hpp"
+#include "gpfd/service/resources.hpp"
 #include "gpfd/util/error.hpp"
 #include "gpfd/version.hpp"
 #include "interrupt.hpp"
@@ -43,7 +44,7 @@ int reproduceCommand(const ReproduceCli& c) {
   o.paperScale = c.scale == "paper";
   o.seed = c.seed;
   o.outDir = c.out;
-  o.threads = threads(c.threads);
+  o.threads = service::usableThreads(c.threads);
   o.version = kVersion;
   o.revision = kRevision;
   o.quiet = c.quiet;
@@ -52,7 +53,7 @@ int reproduceCommand(const ReproduceCli& c) {
   o.overrides = c.sets;
   o.baselineDir = c.baseline;
   o.loadConfig = [](const std::string& name, const std::vector<std::string>& overrides) {
-    return loadConfig(name, overrides);
+    return service::loadConfig(name, overrides);
   };
   o.benchJit = benchJit;
   std::vector<std::string> figures;
@@ -66,7 +67,9 @@ int reproduceCommand(const ReproduceCli& c) {
       figures.push_back(f);
     }
   }
-  o.stop = &stopOnInterrupt();
+  o.stop = &stopOnInterrupt(
+      "\ngpfd reproduce: stopping at the next checkpoint; press Ctrl-C again to stop at once "
+      "(a rerun continues from what is saved)\n");
   run::reproduce(figures, o);
   return 0;
 }

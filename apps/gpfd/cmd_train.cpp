@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "command.hpp"
 #include "gpfd/env/environment.hpp"
@@ -14,10 +15,11 @@
 #include "gpfd/expr/print.hpp"
 #include "gpfd/jit/compiled_feature_map.hpp"
 #include "gpfd/rl/learner.hpp"
+#include "gpfd/service/params.hpp"
+#include "gpfd/service/results_directory.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
 #include "listings.hpp"
-#include "param_routing.hpp"
 
 namespace gpfd::app {
 namespace {
@@ -30,7 +32,8 @@ struct TrainArgs {
   std::string learner;
   std::vector<std::string> params;
   std::uint64_t seed = 1;
-  std::string out;
+  std::optional<std::string> out;
+  bool force = false;
   int eval = 0;
   bool quiet = false;
 };
@@ -48,14 +51,14 @@ int runTrain(const TrainArgs& args) {
   const auto& learners = rl::LearnerRegistry::global();
   const env::EnvInfo& info = registry.info(args.env);
   const std::string learner = args.learner.empty() ? info.defaultLearner : args.learner;
-  const auto& learnerInfo = reportedAt(
+  const auto& learnerInfo = service::reportedAt(
       "--learner", [&]() -> const auto& { return learners.info(learner); });
   if (!args.features.empty() && args.raw) {
     throw InputError("give either --features or --raw, not both", "--raw");
   }
 
   // Each k=v goes to the environment (its own parameter names) or to the learner.
-  const RoutedParams params = routeParams(args.params, info, "--param");
+  const service::RoutedParams params = service::routeParams(args.params, info, "--param");
   const auto learnerParamNames = paramNames(learnerInfo.params);
   for (const auto& [key, value] : params.learner) {
     if (std::find(learnerParamNames.begin(), learnerParamNames.end(), key) ==
@@ -67,7 +70,7 @@ int runTrain(const TrainArgs& args) {
     }
   }
   const std::unique_ptr<env::Environment> environment = registry.make(args.env, params.env);
-  reportedAt("--learner", [&] { learners.checkSuitable(learner, *environment); });
+  service::reportedAt("--learner", [&] { learners.checkSuitable(learner, *environment); });
   const std::unique_ptr<rl::Learner> trainer = learners.make(learner, params.learner);
 
   // The feature map: raw state variables, a features file, or both side by side.
@@ -100,9 +103,11 @@ int runTrain(const TrainArgs& args) {
   }
 
   // Check the output directory before spending time on training.
-  const std::string outDir =
-      args.out.empty() ? fmt::format("gpfd-train-{}-{}", args.env, args.seed) : args.out;
-  createDirectories(outDir);
+  // A fresh results/train-ENV-SEED (-2, ... when taken) unless --out says otherwise; locked.
+  const DirectoryLock lock = service::claimResultsDirectory(
+      {args.out, args.force, "--out"}, fmt::format("train-{}-{}", args.env, args.seed), {},
+      "output directory");
+  const std::string& outDir = lock.directory();
 
   auto progress = [&](const rl::CurvePoint& p) {
     if (!args.quiet) {
@@ -188,7 +193,10 @@ const CommandRegistration registration{
           "environments': gpfd envs):\n" +
           learnerParamSummary());
       cmd->add_option("--seed", args->seed, "seed of the run (default 1)")->check(seedValue());
-      cmd->add_option("--out", args->out, "output directory (default gpfd-train-ENV-SEED)");
+      cmd->add_option("--out", args->out,
+                      "output directory (default results/train-ENV-SEED, or -2, -3, ... when "
+                      "taken); one that already holds files needs --force");
+      cmd->add_flag("--force", args->force, "write into an --out that already holds files");
       cmd->add_option("--eval", args->eval, "greedy evaluation episodes after training")
           ->check(bounded(0, 100000));
       cmd->add_flag("--quiet", args->quiet, "print nothing");

@@ -66,9 +66,10 @@ int main(int argc, char** argv) {
     for (std::size_t i = before; i < subs.size(); ++i) runners.emplace_back(subs[i], run);
   }
 
-  if (argc == 1) {  // Plain `gpfd`: the list of commands.
-    std::fputs(cli.help().c_str(), stdout);
-    return 0;
+  if (argc == 1) {  // Plain `gpfd`: the list of commands, and a usage error (nothing was run).
+    std::fputs(cli.help().c_str(), stderr);
+    std::fputs("error: no command given (gpfd --help lists them)\n", stderr);
+    return 2;
   }
   try {
     cli.parse(static_cast<int>(args.size()), args.data());

@@ -21,14 +21,6 @@ CLI::Validator environmentName();
 
 // Every --threads: 0 (all cores) up to a sane bound; more than the cores is clamped (threads()).
 inline CLI::Validator threadCount() { return bounded(0, 4096); }
-// The --threads value to use: `requested`, or the number of cores when it asks for more (with a
-// note on stderr once), since more threads than cores only add overhead.
-int threads(int requested);
-
-// Refuses, as an InputError at `where`, work that would hold more than this machine's physical
-// memory: `bytes` is the estimate of what `what` keeps in memory.
-void requireMemory(double bytes, const std::string& what, const std::string& where);
-
 // The bounds of the flags that several commands share.
 inline constexpr long long kMaxPopulation = 1000000;  // Also the config's gp.population bound.
 inline constexpr long long kMaxGenerations = 1000000;

@@ -90,15 +90,6 @@ def _env_overrides(
     return [f"env.name={_toml_value(name)}", "env.params={}"], user_env.Evaluator(name, factory, 1)
 
 
-def _print_generation(stats: dict[str, Any]) -> None:
-    print(
-        f"gen {stats['generation']:3d}  best {stats['best']:.6g}  mean {stats['mean']:.6g}  "
-        f"features {stats['mean_features']:.2f}  size {stats['mean_size']:.1f}  "
-        f"evals {stats['evaluations']} (+{stats['cache_hits']} cached)  {stats['seconds']:.1f}s",
-        flush=True,
-    )
-
-
 def evolve(
     config: str | os.PathLike | None = None,
     *,
@@ -113,6 +104,7 @@ def evolve(
     resume: str | os.PathLike | None = None,
     env_kwargs: dict[str, Any] | None = None,
     verbose: bool = False,
+    force: bool = False,
 ) -> Run:
     """Discovers features with GP, exactly as ``gpfd evolve`` does, and returns the run.
 
@@ -123,14 +115,16 @@ def evolve(
     seed, population, generations: override the config's, like the command's flags.
     threads: worker threads (processes for a Python environment); 0: all cores. Never changes
         the results.
-    out: the results directory (default ``results/<name>``, or ``results/<name>-N`` when taken).
+    out: the results directory (default ``results/<name>``, or ``results/<name>-N`` when taken);
+        one that already holds files needs ``force=True``, one that holds a run is resumed with
+        ``resume=``, never started over. The directory is locked while the run writes into it.
     set: any config key, ``{"gp.elitism": 0.2}`` or ``["gp.elitism=0.2"]`` (``--set``).
     callback: called after each generation (once its checkpoint is written) with its statistics
         (generation, best, mean, median, mean_size, mean_features, evaluations, cache_hits,
         seconds, best_features); a true return value stops the run there.
     resume: continue the run in this directory (with its stored config; only ``generations`` may
         extend it; give ``env`` again for an environment stepped in Python).
-    verbose: print a line per generation.
+    verbose: print what ``gpfd evolve`` prints: a line per generation and what the run returned.
 
     Ctrl-C stops the run at the end of the running generation, after its checkpoint.
     """
@@ -149,27 +143,26 @@ def evolve(
             overrides.append(f"seed={int(seed)}")
         if population is not None:
             overrides.append(f"gp.population={int(population)}")
-        if generations is not None:
-            overrides.append(f"gp.generations={int(generations)}")
         overrides += _overrides(set)
     if evaluator is not None:
         evaluator.workers = threads if threads > 0 else (os.cpu_count() or 1)
 
     def on_generation(stats: dict[str, Any]) -> bool:
-        if verbose:
-            _print_generation(stats)
         return bool(callback(stats)) if callback is not None else False
 
     try:
         directory, finished = _core.evolve(
             "" if config is None else os.fspath(config),
             overrides,
-            "" if out is None else os.fspath(out),
+            None if out is None else os.fspath(out),
+            bool(force),
             "" if resume is None else os.fspath(resume),
             int(threads),
-            generations if resume is not None else None,
+            None if generations is None else int(generations),
+            None,
             on_generation,
             evaluator,
+            bool(verbose),
         )
     finally:
         if evaluator is not None:
@@ -247,13 +240,15 @@ def assess(
     seed: int = 1,
     threads: int = 0,
     out: str | os.PathLike | None = None,
+    force: bool = False,
     as_frame: bool | None = None,
 ) -> Any:
     """The paper's test protocol, as ``gpfd assess`` runs it: each feature set (and the original
     state variables, the baseline, first) trained with the long budget over ``runs`` runs, with
     Welch and Mann-Whitney tests against the baseline. Returns the statistics table (the columns
     of summary.csv) as a pandas DataFrame when pandas is installed (``as_frame=None``), else as a
-    dict of NumPy arrays. ``out`` also writes curves, finals, summary and plots there.
+    dict of NumPy arrays. ``out`` also writes curves, finals, summary and plots there (locked while
+    written; a directory that already holds files needs ``force=True``).
 
     params: ``k=v`` for the environment or the learner, like ``--param``.
     """
@@ -276,7 +271,8 @@ def assess(
         bool(raw),
         bool(with_original),
         int(fourier),
-        "" if out is None else os.fspath(out),
+        None if out is None else os.fspath(out),
+        bool(force),
     )
     return _table({key: table[key] for key in _SUMMARY_COLUMNS}, as_frame)
 

@@ -1,6 +1,7 @@
 // python: discovery (`gpfd evolve`), GP's fitness of one feature set, and assessment
-// (`gpfd assess`) from Python, through the same library calls and config loading as the command
-// line. gpfd.discovery wraps them.
+// (`gpfd assess`) from Python: thin adapters over the service layer (gpfd/service/), which the
+// command line calls too, so both give the same results and guarantees (the directory lock
+// first). gpfd.discovery wraps them.
 #include <fmt/format.h>
 #include <nanobind/stl/map.h>
 #include <nanobind/stl/optional.h>
@@ -8,24 +9,20 @@
 #include <nanobind/stl/vector.h>
 
 #include <atomic>
-#include <filesystem>
 #include <map>
 #include <mutex>
 #include <optional>
 
 #include "bindings.hpp"
-#include "config_loading.hpp"
 #include "feature_set.hpp"
 #include "genome_blob.hpp"
-#include "gpfd/expr/simplify.hpp"
-#include "gpfd/rl/learner.hpp"
-#include "gpfd/run/assessment.hpp"
-#include "gpfd/run/discovery.hpp"
+#include "gpfd/env/environment.hpp"
 #include "gpfd/run/learning_task.hpp"
-#include "gpfd/util/atomic_file.hpp"
-#include "gpfd/util/error.hpp"
-#include "gpfd/version.hpp"
-#include "param_routing.hpp"
+#include "gpfd/service/assess.hpp"
+#include "gpfd/service/configs.hpp"
+#include "gpfd/service/evolve.hpp"
+#include "gpfd/service/evolve_text.hpp"
+#include "gpfd/service/feature_source.hpp"
 
 namespace gpfd::python {
 namespace {
@@ -72,18 +69,11 @@ class PythonBatchEvaluator final : public gp::Evaluator {
   std::function<void()> done_;
 };
 
-// The default results directory of `gpfd evolve`: results/<name>, or results/<name>-N when taken.
-std::string freshResultsDir(const std::string& base) {
-  std::string dir = base;
-  for (int n = 2; std::filesystem::exists(dir); ++n) dir = base + "-" + std::to_string(n);
-  return dir;
-}
-
 std::vector<std::string> stateNamesOf(const run::ExperimentConfig& config) {
   return env::Registry::global().make(config.env, config.envParams)->stateNames();
 }
 
-nb::dict generationDict(const run::GenerationRecord& r, const run::ExperimentConfig& config,
+nb::dict generationDict(const run::GenerationRecord& r, const run::Discovery& discovery,
                         const std::vector<std::string>& variables) {
   nb::dict d;
   d["generation"] = r.generation;
@@ -96,53 +86,99 @@ nb::dict generationDict(const run::GenerationRecord& r, const run::ExperimentCon
   d["cache_hits"] = r.cacheHits;
   d["seconds"] = r.seconds;
   expr::FeaturesFile best;
-  best.env = config.env;
+  best.env = discovery.config().env;
   best.variables = variables;
-  best.genome = expr::simplify(r.bestGenome);  // As best/generation-NNNN.features holds it.
+  best.genome = discovery.asLearnerSees(r.bestGenome);  // As best/generation-NNNN.features.
   d["best_features"] = nb::cast(FeatureSet(std::move(best), "best"));
   return d;
 }
 
-nb::tuple evolve(const std::string& configName, const std::vector<std::string>& overrides,
-                 const std::string& out, const std::string& resume, int threads,
-                 std::optional<int> generations, nb::object onGeneration, nb::object evaluate) {
-  run::DiscoveryOptions options;
-  options.outDir = resume.empty() ? out : resume;
-  options.threads = threads;
-  options.version = kVersion;
-  options.revision = kRevision;
+// Text to one of Python's streams ("stdout", "stderr"), so that it shows in notebooks too.
+service::TextSink pythonStream(const char* name) {
+  return [name](const std::string& text) {
+    nb::gil_scoped_acquire gil;
+    const nb::object stream = nb::module_::import_("sys").attr(name);
+    stream.attr("write")(text);
+    stream.attr("flush")();
+  };
+}
+
+// gpfd.evolve's view of a run: the per-generation callback (a true return value stops the run),
+// Ctrl-C checked after each generation, and the command's text when verbose (what stops a run is
+// always said, on stderr).
+class PythonProgress final : public service::EvolveProgress {
+ public:
+  PythonProgress(nb::object onGeneration, bool verbose, std::atomic<bool>& stop)
+      : onGeneration_(std::move(onGeneration)),
+        text_({.out = pythonStream("stdout"),
+               .err = pythonStream("stderr"),
+               .terminal = false,
+               .quiet = !verbose,
+               .resumeCommand = "gpfd.evolve(resume=\"{}\")"}),
+        stop_(stop) {}
+
+  void runStarted(const run::Discovery& d, const std::string& dir,
+                  const std::string& label) override {
+    variables_ = stateNamesOf(d.config());
+    text_.runStarted(d, dir, label);
+  }
+  void generationDone(const run::Discovery& d, const run::GenerationRecord& record,
+                      const std::string& label) override {
+    text_.generationDone(d, record, label);
+    nb::gil_scoped_acquire gil;
+    // Ctrl-C stops the run once this generation's checkpoint is written.
+    if (PyErr_CheckSignals() != 0) throw nb::python_error();
+    if (onGeneration_.is_none()) return;
+    const nb::object verdict = onGeneration_(generationDict(record, d, variables_));
+    if (PyObject_IsTrue(verdict.ptr()) == 1) stop_.store(true);
+  }
+  void runStopped(const run::Discovery& d, const std::string& dir, const std::string& resumeDir,
+                  bool error) override {
+    text_.runStopped(d, dir, resumeDir, error);
+  }
+  void runFinished(const run::RunOutcome& o, const std::string& dir,
+                   const std::string& label) override {
+    text_.runFinished(o, dir, label);
+  }
+  void setFinished(const std::vector<run::RunOutcome>& o, const std::string& dir) override {
+    text_.setFinished(o, dir);
+  }
+  void alreadyComplete(const std::string& dir, int generations) override {
+    text_.alreadyComplete(dir, generations);
+  }
+
+ private:
+  nb::object onGeneration_;
+  service::EvolveText text_;
+  std::atomic<bool>& stop_;
+  std::vector<std::string> variables_;
+};
+
+nb::tuple evolve(const std::string& config, const std::vector<std::string>& overrides,
+                 std::optional<std::string> out, bool force, const std::string& resume, int threads,
+                 std::optional<int> generations, std::optional<int> runs, nb::object onGeneration,
+                 nb::object evaluate, bool verbose) {
+  service::EvolveRequest request;
+  request.config = config;
+  request.overrides = overrides;
+  request.out = {std::move(out), force, "out"};
+  request.resume = resume;
+  request.threads = threads;
+  request.generations = generations;
+  request.runs = runs;
   if (!evaluate.is_none()) {
-    options.makeEvaluator = [evaluate](const run::EvaluatorSetup& setup) {
+    request.makeEvaluator = [evaluate](const run::EvaluatorSetup& setup) {
       return std::make_unique<PythonBatchEvaluator>(evaluate, setup.configText, setup.onEvaluated);
     };
   }
-  std::unique_ptr<run::Discovery> discovery;
-  if (!resume.empty()) {
-    std::optional<run::ExperimentConfig> expected;
-    if (!configName.empty()) expected = app::loadConfig(configName, {});
-    discovery = run::Discovery::resume(options, expected, generations);
-  } else {
-    const auto config = app::loadConfig(configName, overrides);
-    if (options.outDir.empty()) options.outDir = freshResultsDir("results/" + config.name);
-    discovery = run::Discovery::start(config, options);
-  }
-  const auto variables = stateNamesOf(discovery->config());
   std::atomic<bool> stop{false};
+  PythonProgress progress(std::move(onGeneration), verbose, stop);
+  service::EvolveResult result;
   {
     nb::gil_scoped_release release;
-    discovery->run(
-        [&](const run::GenerationRecord& record) {
-          nb::gil_scoped_acquire gil;
-          // Ctrl-C stops the run once this generation's checkpoint is written.
-          if (PyErr_CheckSignals() != 0) throw nb::python_error();
-          if (onGeneration.is_none()) return;
-          const nb::object verdict =
-              onGeneration(generationDict(record, discovery->config(), variables));
-          if (PyObject_IsTrue(verdict.ptr()) == 1) stop.store(true);
-        },
-        stop);
+    result = service::evolve(request, progress, stop);
   }
-  return nb::make_tuple(options.outDir, discovery->finished());
+  return nb::make_tuple(result.dir, result.finished);
 }
 
 // One LearningTask per config text, for the worker processes' fitness calls.
@@ -167,103 +203,45 @@ double trialFitness(const std::string& configText, const nb::bytes& genome, std:
   return run::trialFitness(task, g, rng);
 }
 
-void checkFor(const FeatureSet& set, const run::LearningTask& task) {
-  const auto& env = task.config().env;
-  if (!set.file().env.empty() && set.file().env != env) {
-    throw InputError("the features are for " + set.file().env + ", not " + env, set.name());
-  }
-  if (set.file().variables != task.stateNames()) {
-    throw InputError(
-        fmt::format("the features read {} but {} has {}", fmt::join(set.file().variables, ", "),
-                    env, fmt::join(task.stateNames(), ", ")),
-        set.name());
-  }
+service::FeatureSource sourceOf(const FeatureSet& set) {
+  return {.name = set.name(), .path = {}, .file = set.file()};
 }
 
-double fitness(const std::string& configName, const std::vector<std::string>& overrides,
+double fitness(const std::string& config, const std::vector<std::string>& overrides,
                const FeatureSet& set, std::uint64_t seed) {
-  const auto config = app::loadConfig(configName, overrides);
-  run::validate(config);
-  const run::LearningTask task(config, run::LearningTask::Budget::Trial);
-  checkFor(set, task);
+  const auto source = sourceOf(set);
   nb::gil_scoped_release release;
-  Rng rng(seed);
-  return run::trialFitness(task, set.file().genome, rng);
+  return service::trialFitness(config, overrides, source, seed);
 }
 
-// `gpfd assess`'s config: the config's learner (or pg, lpi for Tetris), params routed to the
-// environment or the long budget.
-run::ExperimentConfig assessConfig(const std::string& configName, const std::string& envName,
-                                   const std::map<std::string, std::string>& params, int runs,
-                                   int budget, std::uint64_t seed) {
-  run::ExperimentConfig config;
-  if (!configName.empty()) {
-    config = app::loadConfig(configName, {});
-    if (!envName.empty() && envName != config.env) {
-      throw InputError("the environment differs from the config's (" + config.env + ")", envName);
-    }
-  } else {
-    if (envName.empty()) throw InputError("give an environment or a config", "gpfd.assess");
-    config.env = envName;
-    config.learner = env::Registry::global().info(envName).defaultLearner;
-  }
-  std::vector<std::string> assignments;
-  for (const auto& [key, value] : params) assignments.push_back(key + "=" + value);
-  const auto routed =
-      app::routeParams(assignments, env::Registry::global().info(config.env), "params");
-  for (const auto& [key, value] : routed.env) config.envParams[key] = value;
-  for (const auto& [key, value] : routed.learner) config.assessParams[key] = value;
-  if (budget > 0) {
-    const auto& learner = rl::LearnerRegistry::global().info(config.learner);
-    config.assessParams[learner.budgetParam] = std::to_string(budget);
-  }
-  if (runs > 0) config.assessRuns = runs;
-  config.seed = seed;
-  run::validate(config);
-  return config;
-}
-
-nb::dict assess(const std::string& configName, const std::string& envName,
+nb::dict assess(const std::string& config, const std::string& env,
                 const std::map<std::string, std::string>& params, int runs, int budget,
                 std::uint64_t seed, int threads, const std::vector<const FeatureSet*>& featureSets,
-                bool raw, bool withOriginal, int fourier, const std::string& out) {
-  const auto config = assessConfig(configName, envName, params, runs, budget, seed);
-  const run::LearningTask task(config, run::LearningTask::Budget::Assessment);
-  const std::size_t dim = task.stateDim();
-  std::vector<run::FeatureSet> sets;
-  if (raw || !featureSets.empty()) {
-    sets.push_back({"original", std::make_shared<const features::RawFeatureMap>(dim)});
-  }
-  for (const FeatureSet* set : featureSets) {
-    checkFor(*set, task);
-    std::string name = set->name();
-    for (const auto& s : sets) {
-      if (s.name == name) name += "-" + std::to_string(sets.size());
-    }
-    const bool asEvolved = config.withOriginal;
-    sets.push_back({name + (asEvolved ? "+original" : ""),
-                    run::genomeFeatureMap(set->file().genome, dim, asEvolved)});
-    if (withOriginal && !asEvolved) {
-      sets.push_back({name + "+original", run::genomeFeatureMap(set->file().genome, dim, true)});
-    }
-  }
-  if (fourier > 0) sets.push_back(run::fourierFeatureSet(task, fourier));
-  if (sets.empty()) throw InputError("nothing to assess: give features or raw=True", "gpfd.assess");
-  if (!out.empty()) createDirectories(out);
-
-  std::vector<run::SetSummary> summary;
+                bool raw, bool withOriginal, int fourier, std::optional<std::string> out,
+                bool force) {
+  service::AssessRequest request;
+  request.env = env;
+  request.config = config;
+  for (const FeatureSet* set : featureSets) request.features.push_back(sourceOf(*set));
+  request.raw = raw;
+  request.withOriginal = withOriginal;
+  request.fourier = fourier;
+  request.runs = runs;
+  request.budget = budget;
+  for (const auto& [key, value] : params) request.params.push_back(key + "=" + value);
+  request.seed = seed;
+  request.threads = threads;
+  request.write = out.has_value();
+  request.out = {std::move(out), force, "out"};
+  request.where = "gpfd.assess";
+  service::AssessResult result;
   {
     nb::gil_scoped_release release;
-    const auto result = run::runAssessment(task, sets, config.assessRuns, config.seed, threads);
-    summary = run::summarizeAssessment(result, 0);
-    if (!out.empty()) {
-      run::writeAssessment(out, result, summary, config.env + ": " + config.learner,
-                           config.learner == "lpi" ? "iteration" : "policy update");
-    }
+    result = service::assess(request);
   }
   std::map<std::string, std::vector<double>> columns;
   std::vector<std::string> names;
-  for (const auto& row : summary) {
+  for (const auto& row : result.summary) {
     names.push_back(row.name);
     const auto& c = row.vsBaseline;
     const auto& a = row.areaVsBaseline;
@@ -293,10 +271,12 @@ nb::dict assess(const std::string& configName, const std::string& envName,
 }  // namespace
 
 void bindDiscovery(nb::module_& m) {
-  m.def("evolve", &evolve, nb::arg("config"), nb::arg("overrides"), nb::arg("out"),
-        nb::arg("resume"), nb::arg("threads"), nb::arg("generations").none(),
-        nb::arg("on_generation").none(), nb::arg("evaluate").none(),
-        "Runs (or resumes) a discovery run like `gpfd evolve`; returns (results dir, finished).");
+  m.def("evolve", &evolve, nb::arg("config"), nb::arg("overrides"), nb::arg("out").none(),
+        nb::arg("force"), nb::arg("resume"), nb::arg("threads"), nb::arg("generations").none(),
+        nb::arg("runs").none(), nb::arg("on_generation").none(), nb::arg("evaluate").none(),
+        nb::arg("verbose"),
+        "Runs (or resumes) discovery through the service layer, like `gpfd evolve`; returns "
+        "(results dir, finished).");
   m.def("trial_fitness", &trialFitness, nb::arg("config_text"), nb::arg("genome"), nb::arg("seed"),
         "run::trialFitness of a packed genome (the worker processes' task).");
   m.def("fitness", &fitness, nb::arg("config"), nb::arg("overrides"), nb::arg("features"),
@@ -304,13 +284,13 @@ void bindDiscovery(nb::module_& m) {
   m.def(
       "resolved_config",
       [](const std::string& config, const std::vector<std::string>& overrides) {
-        return run::formatExperimentConfig(app::loadConfig(config, overrides));
+        return run::formatExperimentConfig(service::loadConfig(config, overrides));
       },
       nb::arg("config"), nb::arg("overrides"), "A config, fully resolved, as TOML.");
-  m.def("builtin_configs", &app::builtinConfigNames);
+  m.def("builtin_configs", &service::builtinConfigNames);
   m.def("assess", &assess, nb::arg("config"), nb::arg("env"), nb::arg("params"), nb::arg("runs"),
         nb::arg("budget"), nb::arg("seed"), nb::arg("threads"), nb::arg("features"), nb::arg("raw"),
-        nb::arg("with_original"), nb::arg("fourier"), nb::arg("out"),
+        nb::arg("with_original"), nb::arg("fourier"), nb::arg("out").none(), nb::arg("force"),
         "The test protocol of `gpfd assess`; returns the statistics table by column.");
 }
 

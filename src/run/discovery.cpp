@@ -77,14 +77,23 @@ struct Discovery::State {
 
   std::string path(const std::string& name) const { return options.outDir + "/" + name; }
 
-  expr::FeaturesFile featuresFile(const gp::Individual& best) const {
+  // The GP's best genome as the learner saw it (normalised, placeholders out), marked as not
+  // validated: what best.features holds until validation replaces it.
+  expr::FeaturesFile unvalidatedFile(const gp::Individual& best, int generation) const {
     expr::FeaturesFile file;
     file.env = config.env;
     file.variables = task.stateNames();
-    file.genome = expr::simplify(best.genome);
-    file.meta["fitness"] = fmt::format("{}", best.fitness);
+    file.genome = expr::simplify(task.prepared(best.genome));
+    file.meta["status"] = fmt::format(
+        "not validated: the GP's best genome {}, scored by its own short trials (a biased, "
+        "best-of-run estimate); finish or resume the run to validate it against the original "
+        "variables",
+        generation < 0 ? std::string("so far") : fmt::format("of generation {}", generation));
+    file.meta["gp_fitness"] = fmt::format("{}", best.fitness);
+    if (generation >= 0) file.meta["generation"] = std::to_string(generation);
     file.meta["experiment"] = config.name;
     file.meta["seed"] = std::to_string(config.seed);
+    if (config.normalise) file.meta["normalised"] = "each feature scaled on sampled states";
     return file;
   }
 
@@ -108,10 +117,9 @@ struct Discovery::State {
                             stats.seconds,
                             stats.bestIndividual.genome};
     history.push_back(record);
-    auto best = featuresFile(stats.bestIndividual);
-    best.meta["generation"] = std::to_string(stats.generation);
-    writeFeaturesFile(path(fmt::format("best/generation-{:04d}.features", stats.generation)), best);
-    writeFeaturesFile(path("best.features"), featuresFile(evolution.best()));
+    writeFeaturesFile(path(fmt::format("best/generation-{:04d}.features", stats.generation)),
+                      unvalidatedFile(stats.bestIndividual, stats.generation));
+    writeFeaturesFile(path("best.features"), unvalidatedFile(evolution.best(), -1));
     writeFileAtomically(path("generations.csv"), formatGenerationsCsv(history));
     writeCheckpoint();
   }
@@ -317,6 +325,9 @@ bool Discovery::finished() const {
          (!s_->validating() || s_->validation.finalGeneration == s_->evolution.generation());
 }
 const ValidationState& Discovery::validation() const { return s_->validation; }
+expr::Genome Discovery::asLearnerSees(const expr::Genome& genome) const {
+  return expr::simplify(s_->task.prepared(genome));
+}
 long Discovery::progress() const { return s_->done.load(std::memory_order_relaxed); }
 int Discovery::populationSize() const { return s_->config.gp.population; }
 

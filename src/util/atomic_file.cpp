@@ -40,7 +40,8 @@ void writeFileAtomically(const std::string& path, const std::string& contents) {
 }
 
 std::string readFile(const std::string& path) {
-  if (std::filesystem::is_directory(path)) throw InputError("a directory, not a file", path);
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError("a directory, not a file", path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(std::string("cannot read: ") + std::strerror(errno), path);
   std::ostringstream out;
@@ -52,7 +53,7 @@ std::string readFile(const std::string& path) {
 void createDirectories(const std::string& dir, const std::string& what) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
-  if (ec || !std::filesystem::is_directory(dir)) {
+  if (ec || !std::filesystem::is_directory(dir, ec)) {
     const std::string why = ec ? ec.message() : "a file is in the way";
     throw InputError("cannot create the " + what + ": " + why, dir);
   }

@@ -72,7 +72,11 @@ std::optional<DirectoryLock> DirectoryLock::tryLock(const std::string& dir,
 DirectoryLock DirectoryLock::lockFresh(const std::string& base, const std::string& what) {
   std::string dir = base;
   for (int n = 2;; dir = base + "-" + std::to_string(n++)) {
-    if (fs::exists(dir)) continue;
+    std::error_code ec;
+    if (fs::exists(dir, ec) || ec) {
+      if (ec) throw InputError("cannot use the " + what + ": " + ec.message(), dir);
+      continue;
+    }
     if (auto lock = tryLock(dir, what)) {
       if (lock->created_) return std::move(*lock);
     }
@@ -82,7 +86,8 @@ DirectoryLock DirectoryLock::lockFresh(const std::string& base, const std::strin
 bool DirectoryLock::acquire(const std::string& dir, const std::string& what, long& holder) {
   const std::string path = lockPath(dir);
   for (int attempt = 0;; ++attempt) {
-    const bool existed = fs::is_directory(dir);
+    std::error_code ec;
+    const bool existed = fs::is_directory(dir, ec);
     createDirectories(dir, what);
     created_ = created_ || !existed;
     const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);

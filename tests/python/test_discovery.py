@@ -216,3 +216,60 @@ def test_ctrl_c_stops_after_a_checkpoint(tmp_path):
     assert 2 <= run.generations < 500 and not run.finished
     resumed = gpfd.evolve(resume=tmp_path / "run", generations=run.generations + 1)
     assert resumed.finished and resumed.generations == run.generations + 1
+
+
+def _hold_lock(directory):
+    """A process that holds `directory`'s lock as another gpfd would (flock on .gpfd.lock)."""
+    directory.mkdir(parents=True, exist_ok=True)
+    script = (
+        "import fcntl, sys, time\n"
+        "f = open(sys.argv[1], 'w')\n"
+        "fcntl.flock(f, fcntl.LOCK_EX)\n"
+        "f.write('4242\\n'); f.flush()\n"
+        "print('locked', flush=True)\n"
+        "time.sleep(120)\n"
+    )
+    holder = subprocess.Popen(
+        [sys.executable, "-c", script, str(directory / ".gpfd.lock")],
+        stdout=subprocess.PIPE,
+        text=True,
+    )
+    assert holder.stdout.readline().strip() == "locked"
+    return holder
+
+
+def test_evolve_and_assess_take_the_directory_lock(tmp_path):
+    """One writer per results directory, from Python as from the command line."""
+    holder = _hold_lock(tmp_path / "run")
+    try:
+        with pytest.raises(gpfd.InputError, match="another gpfd process"):
+            gpfd.evolve(seed=2, population=8, generations=1, set=QUICK, out=tmp_path / "run")
+        with pytest.raises(gpfd.InputError, match="another gpfd process"):
+            gpfd.assess(env="cartpole", raw=True, runs=2, budget=2, out=tmp_path / "run")
+        assert sorted(p.name for p in (tmp_path / "run").iterdir()) == [".gpfd.lock"]
+    finally:
+        holder.kill()
+        holder.wait()
+
+
+def test_a_directory_holding_files_needs_force(tmp_path):
+    out = tmp_path / "busy"
+    out.mkdir()
+    (out / "notes.txt").write_text("mine\n")
+    with pytest.raises(gpfd.InputError, match="force=True"):
+        gpfd.evolve(seed=2, population=8, generations=1, set=QUICK, out=out)
+    with pytest.raises(gpfd.InputError, match="empty directory name"):
+        gpfd.evolve(seed=2, population=8, generations=1, set=QUICK, out="")
+    run = gpfd.evolve(seed=2, population=8, generations=1, set=QUICK, out=out, force=True)
+    assert run.finished and (out / "notes.txt").read_text() == "mine\n"
+    # A run is resumed, never started over, even with force.
+    with pytest.raises(gpfd.InputError, match="resume"):
+        gpfd.evolve(seed=2, population=8, generations=1, set=QUICK, out=out, force=True)
+
+
+def test_verbose_prints_what_the_command_prints(tmp_path, capsys):
+    gpfd.evolve(seed=2, population=8, generations=2, set=QUICK, out=tmp_path / "run", verbose=True)
+    printed = capsys.readouterr().out
+    assert "gpfd evolve: cartpole-quick (pg on cartpole), population 8, generations 2" in printed
+    assert "gen   1  best " in printed and "ETA" in printed
+    assert "best.features" in printed.splitlines()[-1]

@@ -5,8 +5,10 @@
 //   config.toml              the fully resolved config
 //   run.json                 seed, version, threads (and MPI processes, when above 1)
 //   generations.csv          one row per generation
-//   best/generation-NNNN.features   the best genome of each generation
-//   best.features            the GP's best features so far; at the end the validation winner
+//   best/generation-NNNN.features   the best genome of each generation, as the learner saw it
+//                            (`# status: not validated`)
+//   best.features            the GP's best features so far, likewise not validated; at the end
+//                            what validation and confirmation return
 //   validation.csv           the validated sets (hall of fame and original variables)
 //   front.csv                the best validated set at each size
 //   checkpoint.json          everything needed to continue exactly
@@ -74,6 +76,9 @@ class Discovery {
   // Every generation done and, when validating, the winner chosen.
   bool finished() const;
   const ValidationState& validation() const;
+  // A genome as the learner sees it (normalised, placeholders out), simplified: what the run's
+  // features files hold for it.
+  expr::Genome asLearnerSees(const expr::Genome& genome) const;
   // Evaluations completed in the current generation (for progress displays; any thread).
   long progress() const;
   int populationSize() const;

@@ -1,4 +1,4 @@
-#include "config_loading.hpp"
+#include "gpfd/service/configs.hpp"
 
 #include <fmt/format.h>
 
@@ -8,13 +8,25 @@
 #include "gpfd/io/suggest.hpp"
 #include "gpfd/util/error.hpp"
 
-namespace gpfd::app {
+namespace gpfd::service {
+namespace {
+
+// Whether `path` names something on disk; a path the system cannot even look up (a symlink loop,
+// a name too long) is the user's mistake, named as such.
+bool existsOnDisk(const std::string& path) {
+  std::error_code ec;
+  const bool exists = std::filesystem::exists(path, ec);
+  if (ec) throw InputError("cannot read the config: " + ec.message(), path);
+  return exists;
+}
+
+}  // namespace
 
 run::ExperimentConfig loadConfig(const std::string& config,
                                  const std::vector<std::string>& overrides,
                                  const std::string& fallback) {
   const std::string name = config.empty() ? fallback : config;
-  if (config.empty() || !std::filesystem::exists(config)) {
+  if (config.empty() || !existsOnDisk(config)) {
     for (const auto& builtin : kBuiltinConfigs) {
       if (builtin.name == name) {
         return run::parseExperimentConfig(std::string(builtin.text), "configs/" + name + ".toml",
@@ -41,4 +53,4 @@ std::vector<std::string> builtinConfigNames() {
   return names;
 }
 
-}  // namespace gpfd::app
+}  // namespace gpfd::service

@@ -1,5 +1,5 @@
-// `--param k=v` handling shared by the commands: splitting, and routing a key to the environment
-// (when it is one of its parameters) or to the learner.
+// service: `k=v` parameters (`--param`, Python's params=): splitting, and routing a key to the
+// environment (when it is one of its parameters) or to the learner.
 #pragma once
 
 #include <fmt/format.h>
@@ -11,7 +11,7 @@
 #include "gpfd/env/environment.hpp"
 #include "gpfd/util/error.hpp"
 
-namespace gpfd::app {
+namespace gpfd::service {
 
 struct KeyValue {
   std::string key, value;
@@ -54,4 +54,4 @@ decltype(auto) reportedAt(const std::string& where, F&& f) {
   }
 }
 
-}  // namespace gpfd::app
+}  // namespace gpfd::service

@@ -1,0 +1,64 @@
+// service: feature discovery as one request (`gpfd evolve`, Python's gpfd.evolve): the config
+// read, the results directory chosen and locked, a single run or a set of runs started or
+// resumed, and its progress reported to whoever asked. The front ends only translate their
+// arguments into an EvolveRequest and the result into their own output.
+#pragma once
+
+#include <atomic>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gpfd/run/discovery.hpp"
+#include "gpfd/run/run_set.hpp"
+#include "gpfd/service/results_directory.hpp"
+
+namespace gpfd::service {
+
+struct EvolveRequest {
+  std::string config;                  // A file or a shipped config name; empty: the default.
+  std::vector<std::string> overrides;  // key=value (--set; the flags --env, --seed, ... as keys).
+  OutputChoice out;                    // The results directory (default results/<name>).
+  std::string resume;                  // Continue the run or set of runs in this directory.
+  std::optional<int> generations;      // Extends a resumed run (a fresh one: an override).
+  std::optional<int> runs;             // Independent runs (a set); default 1.
+  int threads = 0;                     // 0: all cores. Never changes results.
+  // How the evaluations are spread (MPI, Python worker processes); empty: threads.
+  run::EvaluatorFactory makeEvaluator;
+  int processes = 1;  // MPI processes, recorded in run.json when above 1.
+};
+
+// What the request sees of a run while it goes. `label` names a run within a set ("[run 2/3] "),
+// empty for a single run; `dir` is the run's directory, `resumeDir` the one to resume.
+class EvolveProgress {
+ public:
+  virtual ~EvolveProgress() = default;
+  virtual void runStarted(const run::Discovery&, const std::string& /*dir*/,
+                          const std::string& /*label*/) {}
+  // After each generation, once its checkpoint is written. May throw to stop the run there.
+  virtual void generationDone(const run::Discovery&, const run::GenerationRecord&,
+                              const std::string& /*label*/) {}
+  // The run ended without finishing: interrupted (`error` false) or failed (true; the error
+  // is rethrown after this call). Its last checkpoint is written.
+  virtual void runStopped(const run::Discovery&, const std::string& /*dir*/,
+                          const std::string& /*resumeDir*/, bool /*error*/) {}
+  virtual void runFinished(const run::RunOutcome&, const std::string& /*dir*/,
+                           const std::string& /*label*/) {}
+  virtual void setFinished(const std::vector<run::RunOutcome>&, const std::string& /*dir*/) {}
+  // A resumed run that had nothing left to do.
+  virtual void alreadyComplete(const std::string& /*dir*/, int /*generations*/) {}
+};
+
+struct EvolveResult {
+  std::string dir;                        // The results directory (of the run, or of the set).
+  bool finished = false;                  // Every run done and validated; false when stopped.
+  std::vector<run::RunOutcome> outcomes;  // Of the finished runs, in order.
+};
+
+// Runs the request. `stop` is checked after each generation (once its checkpoint is written).
+// InputError, before anything is written, for a bad request; the directory is locked for the
+// whole call.
+EvolveResult evolve(const EvolveRequest& request, EvolveProgress& progress,
+                    const std::atomic<bool>& stop);
+
+}  // namespace gpfd::service

@@ -1,0 +1,30 @@
+// service: a feature set named in a request: a features file to read, or one already read (the
+// Python package's FeatureSet), checked against the task it is used for.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gpfd/expr/features_file.hpp"
+#include "gpfd/run/learning_task.hpp"
+
+namespace gpfd::service {
+
+struct FeatureSource {
+  std::string name;  // Empty: the file's stem.
+  std::string path;  // Read when `file` is empty.
+  std::optional<expr::FeaturesFile> file;
+};
+
+// The source's features file, read, or checked: it must be for the task's environment (when it
+// names one) and read the task's state variables. InputError naming the source otherwise.
+expr::FeaturesFile featuresFor(const FeatureSource& source, const run::LearningTask& task);
+
+// GP's fitness of a feature set: the mean score of the config's short learning trials, as one
+// evaluation of `gpfd evolve` computes it (run::trialFitness with Rng(seed)).
+double trialFitness(const std::string& config, const std::vector<std::string>& overrides,
+                    const FeatureSource& source, std::uint64_t seed);
+
+}  // namespace gpfd::service

@@ -1,0 +1,164 @@
+#include "gpfd/service/evolve.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+
+#include "gpfd/expr/genome.hpp"
+#include "gpfd/service/configs.hpp"
+#include "gpfd/service/resources.hpp"
+#include "gpfd/util/atomic_file.hpp"
+#include "gpfd/util/error.hpp"
+#include "gpfd/version.hpp"
+
+namespace gpfd::service {
+namespace {
+namespace fs = std::filesystem;
+
+// The run in options.outDir: resumed from its checkpoint once it has been started there
+// (config.toml; it must have been started with `config` when given), else started with `config`.
+// `generations` extends a resumed run or sets a fresh one's. The one place a run starts or resumes.
+std::unique_ptr<run::Discovery> openRun(const std::optional<run::ExperimentConfig>& config,
+                                        const run::DiscoveryOptions& options,
+                                        std::optional<int> generations) {
+  if (!config || fs::exists(options.outDir + "/config.toml")) {
+    return run::Discovery::resume(options, config, generations);
+  }
+  run::ExperimentConfig fresh = *config;
+  if (generations) fresh.gp.generations = *generations;
+  return run::Discovery::start(fresh, options);
+}
+
+// Runs (or continues) one run; whether it finished. `number` is its place in a set (1 alone).
+bool runOne(run::Discovery& discovery, const std::string& dir, const std::string& label, int number,
+            const std::string& resumeDir, EvolveProgress& progress, const std::atomic<bool>& stop) {
+  progress.runStarted(discovery, dir, label);
+  try {
+    discovery.run(
+        [&](const run::GenerationRecord& r) { progress.generationDone(discovery, r, label); },
+        stop);
+  } catch (...) {
+    // An error during the run (a worker's, a full disk) leaves the last generation's checkpoint.
+    progress.runStopped(discovery, dir, resumeDir, true);
+    throw;
+  }
+  if (!discovery.finished()) {
+    progress.runStopped(discovery, dir, resumeDir, false);
+    return false;
+  }
+  progress.runFinished(run::outcomeOf(discovery, number), dir, label);
+  return true;
+}
+
+// Runs (or continues) runs 1..runs of `base` in options.outDir, then sums them up.
+EvolveResult runSet(const run::ExperimentConfig& base, int runs,
+                    const run::DiscoveryOptions& options, std::optional<int> generations,
+                    EvolveProgress& progress, const std::atomic<bool>& stop) {
+  EvolveResult result{options.outDir, false, {}};
+  for (int r = 1; r <= runs; ++r) {
+    run::ExperimentConfig config = base;
+    config.seed = run::runSeed(base.seed, r);
+    run::DiscoveryOptions one = options;
+    one.outDir = options.outDir + "/" + run::runDirName(r, runs);
+    const DirectoryLock lock = lockRunDirectory(one.outDir);  // Also against a resume of it.
+    const auto discovery = openRun(config, one, generations);
+    const std::string label = fmt::format("[run {}/{}] ", r, runs);
+    if (!runOne(*discovery, one.outDir, label, r, options.outDir, progress, stop)) return result;
+    result.outcomes.push_back(run::outcomeOf(*discovery, r));
+    writeFileAtomically(options.outDir + "/runs.csv", run::formatRunsCsv(result.outcomes));
+  }
+  progress.setFinished(result.outcomes, options.outDir);
+  result.finished = true;
+  return result;
+}
+
+EvolveResult resume(const EvolveRequest& request, run::DiscoveryOptions options,
+                    EvolveProgress& progress, const std::atomic<bool>& stop) {
+  const std::string& dir = request.resume;
+  if (!request.overrides.empty() || request.runs || request.out.dir) {
+    throw InputError(
+        "a resumed run continues with its stored config: only the number of generations and "
+        "of threads may be given",
+        "resume " + dir);
+  }
+  std::optional<run::ExperimentConfig> expected;
+  if (!request.config.empty()) expected = loadConfig(request.config, {});
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw InputError("no such results directory", "resume " + dir);
+  const DirectoryLock lock = lockRunDirectory(dir);
+  options.outDir = dir;
+  const std::string runsJson = dir + "/runs.json";
+  if (fs::exists(runsJson)) {
+    std::uint64_t seed = 0;
+    int runs = 0;
+    run::parseRunsJson(readFile(runsJson), runsJson, seed, runs);
+    const std::string configPath = dir + "/config.toml";
+    const auto base = run::loadExperimentConfig(configPath);
+    if (expected && run::formatExperimentConfig(*expected) != readFile(configPath)) {
+      throw InputError(
+          "the config differs from the one the runs were started with (see " + configPath + ")",
+          dir);
+    }
+    return runSet(base, runs, options, request.generations, progress, stop);
+  }
+  if (!fs::exists(dir + "/config.toml")) {
+    throw InputError("no run to resume (neither checkpoint.json nor config.toml)", dir);
+  }
+  const auto discovery = openRun(expected, options, request.generations);
+  if (discovery->finished()) {
+    progress.alreadyComplete(dir, discovery->config().gp.generations);
+    return {dir, true, {run::outcomeOf(*discovery, 1)}};
+  }
+  EvolveResult result{dir, false, {}};
+  result.finished = runOne(*discovery, dir, "", 1, dir, progress, stop);
+  if (result.finished) result.outcomes.push_back(run::outcomeOf(*discovery, 1));
+  return result;
+}
+
+}  // namespace
+
+EvolveResult evolve(const EvolveRequest& request, EvolveProgress& progress,
+                    const std::atomic<bool>& stop) {
+  run::DiscoveryOptions options;
+  options.threads = request.makeEvaluator ? request.threads : usableThreads(request.threads);
+  options.version = kVersion;
+  options.revision = kRevision;
+  options.makeEvaluator = request.makeEvaluator;
+  options.processes = request.processes;
+  if (!request.resume.empty()) return resume(request, options, progress, stop);
+
+  auto overrides = request.overrides;
+  if (request.generations) {
+    overrides.push_back("gp.generations=" + std::to_string(*request.generations));
+  }
+  const auto config = loadConfig(request.config, overrides);
+  // Parents and offspring with every genome at its size limits.
+  requireMemory(2.0 * config.gp.population * config.limits.maxFeatures * config.limits.maxSize *
+                    static_cast<double>(sizeof(expr::Node)),
+                "the population at its genome size limits",
+                "gp.population x genome.max_features x genome.max_size");
+  // A directory holding a run or a set is resumed, never started over, even with force.
+  DirectoryLock lock = claimResultsDirectory(request.out, config.name, run::refuseExistingRuns);
+  options.outDir = lock.directory();
+  const int runs = request.runs.value_or(1);
+  if (runs == 1) {
+    std::unique_ptr<run::Discovery> discovery;
+    try {
+      discovery = openRun(config, options, std::nullopt);
+    } catch (...) {
+      lock.removeCreatedDirectory();  // Nothing half-made is left behind.
+      throw;
+    }
+    EvolveResult result{options.outDir, false, {}};
+    result.finished = runOne(*discovery, options.outDir, "", 1, options.outDir, progress, stop);
+    if (result.finished) result.outcomes.push_back(run::outcomeOf(*discovery, 1));
+    return result;
+  }
+  run::validate(config);
+  createDirectories(options.outDir, "results directory");
+  writeFileAtomically(options.outDir + "/config.toml", run::formatExperimentConfig(config));
+  writeFileAtomically(options.outDir + "/runs.json", run::formatRunsJson(config.seed, runs));
+  return runSet(config, runs, options, std::nullopt, progress, stop);
+}
+
+}  // namespace gpfd::service

@@ -1,0 +1,161 @@
+#include "gpfd/service/evolve_text.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+
+namespace gpfd::service {
+namespace {
+
+std::string meanSe(const run::Summary& s) {
+  return fmt::format("{:.6g} +- {:.3g}", s.mean, s.standardError());
+}
+
+}  // namespace
+
+std::string formatDuration(double seconds) {
+  // Rounded to the unit shown first, so that 299.6 s reads 5m00s, not 4m60s.
+  if (seconds < 89.5) return fmt::format("{:.0f}s", seconds);
+  const double wholeSeconds = std::round(seconds);
+  if (wholeSeconds < 5400) {
+    return fmt::format("{:.0f}m{:02.0f}s", std::floor(wholeSeconds / 60),
+                       std::fmod(wholeSeconds, 60));
+  }
+  const double wholeMinutes = std::round(seconds / 60);
+  return fmt::format("{:.0f}h{:02.0f}m", std::floor(wholeMinutes / 60),
+                     std::fmod(wholeMinutes, 60));
+}
+
+EvolveText::EvolveText(Options options) : o_(std::move(options)) {}
+EvolveText::~EvolveText() { stopStatus(); }
+
+void EvolveText::runStarted(const run::Discovery& discovery, const std::string& dir,
+                            const std::string& label) {
+  total_ = 0.0;
+  if (o_.quiet) return;
+  const auto& config = discovery.config();
+  o_.out(fmt::format(
+      "{}gpfd evolve: {} ({} on {}), population {}, generations {}, seed {}, results in {}\n",
+      label, config.name, config.learner, config.env, config.gp.population, config.gp.generations,
+      config.seed, dir));
+  if (!o_.terminal) return;
+  // On a terminal, a status line shows the evaluations of the running generation.
+  running_.store(true);
+  status_ = std::jthread([this, &discovery, label] {
+    const auto start = std::chrono::steady_clock::now();
+    while (running_.load()) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(500));
+      const double elapsed =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      o_.out(fmt::format("\r\033[K  {}generation {}: {}/{} evaluated, {}", label,
+                         discovery.history().size(), discovery.progress(),
+                         discovery.populationSize(), formatDuration(elapsed)));
+    }
+  });
+}
+
+void EvolveText::stopStatus() {
+  if (!status_.joinable()) return;
+  running_.store(false);
+  status_.join();
+  o_.out("\r\033[K");
+}
+
+void EvolveText::generationDone(const run::Discovery& discovery, const run::GenerationRecord& r,
+                                const std::string& label) {
+  total_ += r.seconds;
+  if (o_.quiet) return;
+  const int remaining = discovery.config().gp.generations - 1 - r.generation;
+  const double perGeneration = total_ / static_cast<double>(r.generation + 1);
+  o_.out(fmt::format(
+      "{}{}gen {:3d}  best {:.6g}  mean {:.6g}  features {:.2f}  size {:.1f}  "
+      "evals {} (+{} cached, {} re-evaluated)  {}  ETA {}\n",
+      o_.terminal ? "\r\033[K" : "", label, r.generation, r.best, r.mean, r.meanFeatures,
+      r.meanSize, r.evaluations - r.reevaluations, r.cacheHits, r.reevaluations,
+      formatDuration(r.seconds), formatDuration(perGeneration * remaining)));
+}
+
+void EvolveText::runStopped(const run::Discovery& discovery, const std::string& dir,
+                            const std::string& resumeDir, bool error) {
+  stopStatus();
+  const auto& history = discovery.history();
+  const std::string resume = fmt::format(fmt::runtime(o_.resumeCommand), resumeDir);
+  if (error) {
+    if (history.empty()) return;
+    o_.err(
+        fmt::format("gpfd evolve stopped after generation {}; its checkpoint is written. Continue "
+                    "with: {}\n",
+                    history.back().generation, resume));
+    return;
+  }
+  o_.err(
+      fmt::format("interrupted after generation {}; the checkpoint is written. Continue with: {}\n",
+                  history.empty() ? -1 : history.back().generation, resume));
+  if (!history.empty()) {
+    o_.err(fmt::format(
+        "note: {}/best.features holds the GP's best genome so far (GP fitness {:.6g}, a biased "
+        "best-of-run estimate): it is NOT validated against the original variables; resuming "
+        "to the end validates and confirms\n",
+        dir, history.back().best));
+  }
+}
+
+void EvolveText::runFinished(const run::RunOutcome& o, const std::string& dir,
+                             const std::string& label) {
+  stopStatus();
+  if (o_.quiet) return;
+  if (!o.validated) {
+    o_.out(fmt::format(
+        "{}best fitness {} (GP's own estimate, not validated); features in {}/best.features\n",
+        label, o.gpBest, dir));
+  } else if (o.originalWon) {
+    o_.out(
+        fmt::format("{}no discovered feature set beat the original variables on {} (original {}); "
+                    "{}/best.features holds the original variables\n",
+                    label, o.confirmed ? "validation and confirmation" : "validation",
+                    meanSe(o.original), dir));
+  } else {
+    o_.out(fmt::format(
+        "{}{}: {} vs original {} on {} paired fresh trials (difference {:.4g}, p = {:.3g}); "
+        "features in {}/best.features\n",
+        label, o.confirmed ? "confirmed" : "validated", meanSe(o.winner), meanSe(o.original),
+        o.winner.n, o.vsOriginal.meanDifference, o.vsOriginal.p, dir));
+  }
+}
+
+void EvolveText::setFinished(const std::vector<run::RunOutcome>& outcomes, const std::string& dir) {
+  if (o_.quiet) return;
+  int discovered = 0, significant = 0;
+  bool confirmed = false;
+  std::vector<double> differences;
+  for (const auto& o : outcomes) {
+    if (!o.validated) continue;
+    confirmed = confirmed || o.confirmed;
+    differences.push_back(o.vsOriginal.meanDifference);
+    if (o.originalWon) continue;
+    ++discovered;
+    if (o.vsOriginal.p < 0.05) ++significant;
+  }
+  if (differences.empty()) {
+    o_.out(fmt::format("{} runs done (not validated); per-run results in {}/runs.csv\n",
+                       outcomes.size(), dir));
+    return;
+  }
+  const auto test = run::wilcoxonSignedRank(differences);
+  o_.out(fmt::format(
+      "{} runs: a discovered set beat the original variables on {} in {} ({} with "
+      "p < 0.05); median difference {:.4g} (Wilcoxon signed-rank over runs p = {:.3g}); per-run "
+      "results in {}/runs.csv\n",
+      outcomes.size(), confirmed ? "confirmation" : "validation", discovered, significant,
+      test.median, test.p, dir));
+}
+
+void EvolveText::alreadyComplete(const std::string& dir, int generations) {
+  o_.err(
+      fmt::format("the run in {0} is already complete (generations: {1}); pass --generations N "
+                  "(more than {1}) to extend it\n",
+                  dir, generations));
+}
+
+}  // namespace gpfd::service

@@ -1,0 +1,128 @@
+// The service layer's discovery request (gpfd/service/evolve.hpp): one writer per directory,
+// features files that say what they are, and the text a run prints.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "../run/cli_helpers.hpp"
+#include "gpfd/expr/features_file.hpp"
+#include "gpfd/jit/compiled_feature_map.hpp"
+#include "gpfd/run/learning_task.hpp"
+#include "gpfd/service/configs.hpp"
+#include "gpfd/service/evolve.hpp"
+#include "gpfd/service/evolve_text.hpp"
+#include "gpfd/util/directory_lock.hpp"
+#include "gpfd/util/error.hpp"
+#include "gpfd/version.hpp"
+
+namespace gpfd::testing {
+namespace {
+
+// Stops the run after the first generation.
+class StopAfterFirst final : public service::EvolveProgress {
+ public:
+  explicit StopAfterFirst(std::atomic<bool>& stop) : stop_(stop) {}
+  void generationDone(const run::Discovery&, const run::GenerationRecord&,
+                      const std::string&) override {
+    stop_.store(true);
+  }
+
+ private:
+  std::atomic<bool>& stop_;
+};
+
+service::EvolveRequest tinyRequest(const std::string& name, const std::string& out) {
+  service::EvolveRequest request;
+  request.config = tinyEvolveConfig(name, 5);
+  request.out = {out, false, "--out"};
+  request.threads = 1;
+  return request;
+}
+
+TEST(EvolveService, ADirectoryLockedByAnotherWriterIsRefused) {
+  const auto dir = freshDir("service-locked");
+  const DirectoryLock other(dir, "results directory");
+  service::EvolveProgress quiet;
+  const std::atomic<bool> stop{false};
+  try {
+    service::evolve(tinyRequest("service-locked", dir), quiet, stop);
+    FAIL() << "a locked directory was written into";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("another gpfd process"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir + "/config.toml"));
+}
+
+TEST(EvolveService, ADirectoryHoldingOtherFilesNeedsForce) {
+  const auto dir = freshDir("service-busy");
+  std::filesystem::create_directories(dir);
+  const auto mine = writeText("service-busy/notes.txt", "mine\n");
+  service::EvolveProgress quiet;
+  std::atomic<bool> stop{false};
+  auto request = tinyRequest("service-busy", dir);
+  EXPECT_THROW(service::evolve(request, quiet, stop), InputError);
+  EXPECT_FALSE(std::filesystem::exists(dir + "/config.toml"));
+  request.out.force = true;
+  StopAfterFirst stopper(stop);
+  const auto result = service::evolve(request, stopper, stop);
+  EXPECT_FALSE(result.finished);
+  EXPECT_EQ(readText(mine), "mine\n");
+  // A directory holding a run is never started over, forced or not.
+  stop.store(false);
+  EXPECT_THROW(service::evolve(request, quiet, stop), InputError);
+}
+
+// An interrupted run's features files hold the genome as the learner saw it (normalised here)
+// and say that it is not validated.
+TEST(EvolveService, AStoppedRunsFeaturesAreWhatTheLearnerSawAndSaySo) {
+  const auto dir = freshDir("service-stopped");
+  auto request = tinyRequest("service-stopped", dir);
+  request.overrides = {"fitness.normalise=true"};
+  std::atomic<bool> stop{false};
+  StopAfterFirst stopper(stop);
+  const auto result = service::evolve(request, stopper, stop);
+  ASSERT_FALSE(result.finished);
+
+  const auto config = service::loadConfig(request.config, request.overrides);
+  const run::LearningTask task(config, run::LearningTask::Budget::Trial);
+  auto resumed = run::Discovery::resume({dir, 1, kVersion, "", {}, 1}, std::nullopt, std::nullopt);
+  const auto& best = resumed->history().at(0).bestGenome;
+  for (const std::string name : {"best.features", "best/generation-0000.features"}) {
+    const auto file = expr::readFeaturesFile(dir + "/" + name);
+    ASSERT_TRUE(file.meta.contains("status")) << name;
+    EXPECT_TRUE(file.meta.at("status").starts_with("not validated")) << file.meta.at("status");
+    EXPECT_TRUE(file.meta.contains("gp_fitness"));
+    EXPECT_FALSE(file.meta.contains("fitness"));
+  }
+  // generation 0's file evaluates exactly as the learner's feature map of that genome.
+  const auto file = expr::readFeaturesFile(dir + "/best/generation-0000.features");
+  const jit::CompiledFeatureMap fromFile(file.genome, task.stateDim());
+  const auto learner = task.featureMap(best);
+  ASSERT_EQ(fromFile.outputDim(), learner->outputDim());
+  const std::vector<std::vector<double>> states{
+      {0.1, -0.2, 0.03, 0.5}, {-1.0, 0.7, -0.1, -0.3}, {2.0, 1.5, 0.2, 1.1}};
+  for (const auto& s : states) {
+    std::vector<double> a(learner->outputDim()), b(learner->outputDim());
+    fromFile.evaluate(s.data(), a.data());
+    learner->evaluate(s.data(), b.data());
+    EXPECT_EQ(a, b);
+  }
+  // Without normalisation in the file (the raw genome, as before) the values differ.
+  const jit::CompiledFeatureMap raw(best, task.stateDim());
+  std::vector<double> a(raw.outputDim()), b(learner->outputDim());
+  raw.evaluate(states[0].data(), a.data());
+  learner->evaluate(states[0].data(), b.data());
+  EXPECT_NE(a, b);
+}
+
+TEST(EvolveText, DurationsRoundToTheUnitShown) {
+  EXPECT_EQ(service::formatDuration(45.2), "45s");
+  EXPECT_EQ(service::formatDuration(89.6), "1m30s");
+  EXPECT_EQ(service::formatDuration(299.6), "5m00s");  // Not 4m60s.
+  EXPECT_EQ(service::formatDuration(3599.7), "60m00s");
+  EXPECT_EQ(service::formatDuration(7199.0), "2h00m");
+  EXPECT_EQ(service::formatDuration(5460.0), "1h31m");
+}
+
+}  // namespace
+}  // namespace gpfd::testing
