@@ -1,5 +1,7 @@
 #include "gpfd/gp/evolution.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -22,19 +24,40 @@ void require(bool ok, const char* field, const std::string& rule) {
   if (!ok) throw InputError(std::string(field) + " must be " + rule, std::string("gp.") + field);
 }
 
+// weight / total, in the order of `operators` (a total of exactly 1 leaves the weights as they
+// are).
+std::vector<double> probabilities(const GpConfig& c, const std::vector<OperatorInfo>& operators) {
+  auto p = resolvedWeights(c.operatorWeights, operators);
+  double total = 0.0;
+  for (const double w : p) total += w;
+  for (double& w : p) w /= total;
+  return p;
+}
+
 }  // namespace
 
 void validate(const GpConfig& c) {
   require(c.population >= 2, "population", "at least 2");
   require(c.generations >= 1, "generations", "at least 1");
-  require(c.crossoverRate >= 0 && c.crossoverRate <= 1, "crossover", "in [0, 1]");
-  require(c.listCrossoverShare >= 0 && c.listCrossoverShare <= 1, "list_crossover_share",
-          "in [0, 1]");
-  require(c.nodeMutationWeight >= 0 && c.treeMutationWeight >= 0 && c.shrinkageWeight >= 0,
-          "mutation_weights", "non-negative");
-  require(
-      c.crossoverRate == 1 || c.nodeMutationWeight + c.treeMutationWeight + c.shrinkageWeight > 0,
-      "mutation_weights", "positive in sum when crossover < 1");
+  const auto& registry = OperatorRegistry::global();
+  for (const auto& [name, weight] : c.operatorWeights) {
+    if (!registry.contains(name)) {
+      throw InputError(fmt::format("unknown operator '{}' in gp.operators (known: {})", name,
+                                   fmt::join(registry.names(), ", ")),
+                       "gp.operators." + name);
+    }
+    if (!std::isfinite(weight) || weight < 0) {
+      throw InputError(fmt::format("gp.operators.{} must be a finite, non-negative weight, not {}",
+                                   name, weight),
+                       "gp.operators." + name);
+    }
+  }
+  double total = 0.0;
+  for (const double w : resolvedWeights(c.operatorWeights, registry.operators())) total += w;
+  if (!(total > 0) || !std::isfinite(total)) {
+    throw InputError("gp.operators: the weights must not all be zero, and their sum must be finite",
+                     "gp.operators");
+  }
   require(c.elitism >= 0 && c.elitism < 1, "elitism", "in [0, 1)");
   require(c.tournamentSize >= 1, "tournament_size", "at least 1");
   require(c.sizePenalty >= 0 && std::isfinite(c.sizePenalty), "size_penalty",
@@ -42,11 +65,17 @@ void validate(const GpConfig& c) {
 }
 
 std::vector<double> operatorProbabilities(const GpConfig& c) {
-  const double mutation = 1.0 - c.crossoverRate;
-  const double weights = c.nodeMutationWeight + c.treeMutationWeight + c.shrinkageWeight;
-  const auto share = [&](double w) { return weights > 0 ? mutation * w / weights : 0.0; };
-  return {c.crossoverRate * (1.0 - c.listCrossoverShare), c.crossoverRate * c.listCrossoverShare,
-          share(c.nodeMutationWeight), share(c.treeMutationWeight), share(c.shrinkageWeight)};
+  return probabilities(c, OperatorRegistry::global().operators());
+}
+
+double crossoverProbability(const GpConfig& c) {
+  const auto& operators = OperatorRegistry::global().operators();
+  const auto p = probabilities(c, operators);
+  double sum = 0.0;
+  for (std::size_t o = 0; o < operators.size(); ++o) {
+    if (operators[o].parents() == 2) sum += p[o];
+  }
+  return sum;
 }
 
 Evolution::Evolution(GpConfig config, SearchSpace space, Evaluator& evaluator, GenomeReducer reduce)
@@ -56,6 +85,9 @@ Evolution::Evolution(GpConfig config, SearchSpace space, Evaluator& evaluator, G
       reduce_(std::move(reduce)),
       rng_(deriveSeed(config.seed, kVariationStream)) {
   validate(config_);
+  operators_ = OperatorRegistry::global().operators();
+  probabilities_ = probabilities(config_, operators_);
+  operatorCounts_.assign(operators_.size(), 0);
 }
 
 GenerationStats Evolution::initialize() {
@@ -103,7 +135,7 @@ void Evolution::restore(const EvolutionState& state) {
   population_ = state.population;
   rng_.setState(state.rng);
   operatorCounts_ = state.operatorCounts;
-  operatorCounts_.resize(kOperatorCount, 0);
+  operatorCounts_.resize(operators_.size(), 0);
 }
 
 const Individual& Evolution::best() const {
@@ -122,42 +154,34 @@ const Individual& Evolution::tournament() {
 }
 
 std::vector<expr::Genome> Evolution::breed(std::size_t count) {
-  const auto probabilities = operatorProbabilities(config_);
+  // Falls to the last operator with a positive probability when rounding leaves u past them all.
+  std::size_t fallback = 0;
+  for (std::size_t o = 0; o < probabilities_.size(); ++o) {
+    if (probabilities_[o] > 0) fallback = o;
+  }
   std::vector<expr::Genome> children;
   children.reserve(count + 1);
   while (children.size() < count) {
     double u = rng_.uniform();
-    int chosen = kOperatorCount - 1;
-    for (int o = 0; o < kOperatorCount; ++o) {
-      if (u < probabilities[o]) {
+    std::size_t chosen = fallback;
+    for (std::size_t o = 0; o < probabilities_.size(); ++o) {
+      if (u < probabilities_[o]) {
         chosen = o;
         break;
       }
-      u -= probabilities[o];
+      u -= probabilities_[o];
     }
     ++operatorCounts_[chosen];
-    const auto op = static_cast<Operator>(chosen);
-    if (op == Operator::SubtreeCrossover || op == Operator::FeatureListCrossover) {
+    const auto& apply = operators_[chosen].apply;
+    if (const auto* crossover = std::get_if<Crossover>(&apply)) {
       const expr::Genome& a = tournament().genome;
       const expr::Genome& b = tournament().genome;
-      auto [first, second] = op == Operator::SubtreeCrossover
-                                 ? subtreeCrossover(rng_, a, b, space_)
-                                 : featureListCrossover(rng_, a, b, space_);
+      auto [first, second] = (*crossover)(rng_, a, b, space_);
       children.push_back(std::move(first));
       if (children.size() < count) children.push_back(std::move(second));
-      continue;
-    }
-    const expr::Genome& parent = tournament().genome;
-    switch (op) {
-      case Operator::NodeMutation:
-        children.push_back(nodeMutation(rng_, parent, space_));
-        break;
-      case Operator::TreeMutation:
-        children.push_back(treeMutation(rng_, parent, space_));
-        break;
-      default:
-        children.push_back(shrinkage(rng_, parent, space_));
-        break;
+    } else {
+      const expr::Genome& parent = tournament().genome;
+      children.push_back(std::get<Mutation>(apply)(rng_, parent, space_));
     }
   }
   return children;

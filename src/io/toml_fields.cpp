@@ -205,7 +205,12 @@ void TomlReader::finish() const {
           if (parent == prefix)
             siblings.push_back(dot == std::string::npos ? known : known.substr(dot + 1));
         }
-        throw InputError("unknown key '" + full + "'" + didYouMean(std::string(k.str()), siblings),
+        // The closest known key, or all of them when none is close.
+        const std::string suggestion = didYouMean(std::string(k.str()), siblings);
+        throw InputError("unknown key '" + full + "'" +
+                             (suggestion.empty() && !siblings.empty()
+                                  ? fmt::format(" (known: {})", fmt::join(siblings, ", "))
+                                  : suggestion),
                          place(source_, &v, full));
       }
       if (const toml::table* nested = v.as_table()) stack.emplace_back(full, nested);

@@ -1,10 +1,15 @@
 #include "gpfd/run/experiment_config.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <charconv>
 #include <filesystem>
 #include <functional>
+#include <limits>
 
 #include "gpfd/env/environment.hpp"
+#include "gpfd/gp/operator_registry.hpp"
 #include "gpfd/io/suggest.hpp"
 #include "gpfd/io/toml_fields.hpp"
 #include "gpfd/rl/learner.hpp"
@@ -23,6 +28,10 @@ const std::vector<std::string> kMeasures{"mean", "final", "last_fraction"};
 std::string measureName(TrialMeasure m) { return kMeasures[static_cast<int>(m)]; }
 
 namespace {
+
+void require(bool ok, const std::string& what, const std::string& where) {
+  if (!ok) throw InputError(what, where);
+}
 
 // Visits every field once, for reading and for writing: V is io::TomlReader or Writer below.
 template <typename V>
@@ -58,11 +67,11 @@ void visit(V& v, ExperimentConfig& c) {
   v.boolean("genome", "drop_redundant", c.dropRedundant);
   v.integer("gp", "population", c.gp.population, 2, 1000000);
   v.integer("gp", "generations", c.gp.generations, 1, 1000000);
-  v.real("gp", "crossover", c.gp.crossoverRate, 0.0, 1.0);
-  v.real("gp", "list_crossover_share", c.gp.listCrossoverShare, 0.0, 1.0);
-  v.real("gp", "node_mutation_weight", c.gp.nodeMutationWeight, 0.0, 1e6);
-  v.real("gp", "tree_mutation_weight", c.gp.treeMutationWeight, 0.0, 1e6);
-  v.real("gp", "shrinkage_weight", c.gp.shrinkageWeight, 0.0, 1e6);
+  v.weights("gp.operators", c.gp.operatorWeights);
+  for (const char* key : {"crossover", "list_crossover_share", "node_mutation_weight",
+                          "tree_mutation_weight", "shrinkage_weight"}) {
+    v.replacedByOperators("gp", key);
+  }
   v.real("gp", "elitism", c.gp.elitism, 0.0, 0.99);
   v.integer("gp", "tournament_size", c.gp.tournamentSize, 1, 1000);
   v.integer("validation", "candidates", c.validation.candidates, 0, 1000);
@@ -77,12 +86,77 @@ void visit(V& v, ExperimentConfig& c) {
   v.params("assess.params", c.assessParams);
 }
 
+// "section.key", or "key" in the root table.
+std::string dotted(const std::string& section, const std::string& key) {
+  return section.empty() ? key : section + "." + key;
+}
+
+// The paper's operator table as a config writes it, from the registry's defaults.
+std::string defaultOperatorTable() {
+  std::vector<std::string> entries;
+  for (const auto& o : gp::OperatorRegistry::global().operators()) {
+    entries.push_back(fmt::format("{} = {}", o.name, o.defaultWeight));
+  }
+  return fmt::format("gp.operators = {{ {} }}", fmt::join(entries, ", "));
+}
+
 struct Reader {
   io::TomlReader& r;
+  const toml::table& root;
+
+  const toml::node* node(const char* s, const char* k) const {
+    return root.at_path(dotted(s, k)).node();
+  }
   void text(const char* s, const char* k, std::string& out, std::vector<std::string> choices = {}) {
     r.read(s, k, out, choices);
   }
-  void seed(const char* s, const char* k, std::uint64_t& out) { r.read(s, k, out); }
+  // Any uint64: an integer up to 2^63 - 1, or decimal text (how 2^63 and above are written, since
+  // TOML integers are signed 64-bit). A negative integer is refused.
+  void seed(const char* s, const char* k, std::uint64_t& out) {
+    const toml::node* n = node(s, k);
+    const std::string rule = fmt::format("{} must be an integer in [0, {}]", dotted(s, k),
+                                         std::numeric_limits<std::uint64_t>::max());
+    if (n != nullptr && n->is_string()) {
+      std::string text;
+      r.read(s, k, text);
+      std::uint64_t value = 0;
+      const char* end = text.data() + text.size();
+      const auto [stop, error] = std::from_chars(text.data(), end, value);
+      require(!text.empty() && stop == end && error == std::errc(), rule + ", not '" + text + "'",
+              r.where(s, k));
+      out = value;
+      return;
+    }
+    if (n != nullptr && n->is_integer() && *n->value<std::int64_t>() < 0) {
+      const std::int64_t value = *n->value<std::int64_t>();
+      throw InputError(fmt::format("{}, not {} (a seed of 2^63 or more is written as text, as in "
+                                   "seed = \"{}\", which older versions stored as {})",
+                                   rule, value, static_cast<std::uint64_t>(value), value),
+                       r.where(s, k));
+    }
+    r.read(s, k, out);
+  }
+  // A table of operator weights by name (the names and values are checked by validateAt).
+  void weights(const char* s, std::map<std::string, double>& out) {
+    std::map<std::string, std::string> asText;
+    r.readParams(s, asText);  // Marks the table and its keys as read; refuses a non-table.
+    const toml::table* table = root.at_path(s).as_table();
+    if (table == nullptr) return;
+    for (const auto& [name, value] : *table) {
+      const std::string key(name.str());
+      require(value.is_number(), dotted(s, key) + " must be a number (the operator's weight)",
+              r.where(s, key));
+      out[key] = *value.value<double>();
+    }
+  }
+  // A key of older versions: refused, pointing to gp.operators.
+  void replacedByOperators(const char* s, const char* k) {
+    if (node(s, k) == nullptr) return;
+    throw InputError(dotted(s, k) +
+                         " is no longer a key: the variation operators' weights are the table " +
+                         defaultOperatorTable() + " (the paper's rates; docs/discovery.md)",
+                     r.where(s, k));
+  }
   void integer(const char* s, const char* k, int& out, long lo, long hi) {
     r.read(s, k, out, lo, hi);
   }
@@ -107,8 +181,19 @@ struct Writer {
     w.write(s, k, v);
   }
   void seed(const char* s, const char* k, std::uint64_t& v) {
-    w.write(s, k, static_cast<std::int64_t>(v));
+    if (v > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
+      w.write(s, k, std::to_string(v));  // Beyond a TOML integer: as text (Reader::seed).
+    } else {
+      w.write(s, k, static_cast<std::int64_t>(v));
+    }
   }
+  // Every registered operator's weight, defaults included.
+  void weights(const char* s, std::map<std::string, double>& v) {
+    const auto& operators = gp::OperatorRegistry::global().operators();
+    const auto resolved = gp::resolvedWeights(v, operators);
+    for (std::size_t o = 0; o < operators.size(); ++o) w.write(s, operators[o].name, resolved[o]);
+  }
+  void replacedByOperators(const char*, const char*) {}
   void integer(const char* s, const char* k, int& v, long, long) {
     w.write(s, k, static_cast<std::int64_t>(v));
   }
@@ -121,10 +206,6 @@ struct Writer {
   void params(const char* s, std::map<std::string, std::string>& v) { w.writeParams(s, v); }
   void measure(const char* s, const char* k, TrialMeasure& v) { w.write(s, k, measureName(v)); }
 };
-
-void require(bool ok, const std::string& what, const std::string& where) {
-  if (!ok) throw InputError(what, where);
-}
 
 }  // namespace
 
@@ -169,7 +250,42 @@ auto makeAt(const Make& make, const std::string& owner,
   }
 }
 
+// A results directory's name: letters, digits, '.', '_' and '-', not starting with '.' (so never
+// "", "..", a path or a hidden directory).
+bool isRunName(const std::string& name) {
+  return !name.empty() && name[0] != '.' && std::all_of(name.begin(), name.end(), [](char ch) {
+    return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') ||
+           ch == '.' || ch == '_' || ch == '-';
+  });
+}
+
+// gp::validate, its errors ("gp.KEY", "gp.operators.NAME") moved to the key's place, after the
+// operators' names are checked with a did-you-mean.
+void validateGp(const gp::GpConfig& gp, const Place& place) {
+  const auto names = gp::OperatorRegistry::global().names();
+  for (const auto& [name, weight] : gp.operatorWeights) {
+    const std::string suggestion = io::didYouMean(name, names);
+    require(
+        std::find(names.begin(), names.end(), name) != names.end(),
+        "unknown operator '" + name + "' in gp.operators" +
+            (suggestion.empty() ? fmt::format(" (known: {})", fmt::join(names, ", ")) : suggestion),
+        place("gp.operators", name));
+  }
+  try {
+    gp::validate(gp);
+  } catch (const InputError& e) {
+    const std::size_t dot = e.where().rfind('.');
+    if (!e.where().starts_with("gp.") || dot == std::string::npos) throw;
+    throw InputError(e.what(), place(e.where().substr(0, dot), e.where().substr(dot + 1)));
+  }
+}
+
 void validateAt(const ExperimentConfig& c, const Place& place) {
+  require(isRunName(c.name),
+          "name must be letters, digits, '.', '_' and '-', not starting with '.' (it names the "
+          "results directory), not '" +
+              c.name + "'",
+          place("", "name"));
   for (const auto& plugin : c.plugins) {
     try {
       loadPlugin(plugin);
@@ -242,7 +358,7 @@ void validateAt(const ExperimentConfig& c, const Place& place) {
   require(c.initMinDepth <= c.initMaxDepth,
           "genome.init_min_depth must not exceed genome.init_max_depth",
           place("genome", "init_min_depth"));
-  gp::validate(c.gp);
+  validateGp(c.gp, place);
 }
 
 }  // namespace
@@ -253,7 +369,7 @@ ExperimentConfig parseExperimentConfig(const std::string& text, const std::strin
   for (const auto& o : overrides) io::applyOverride(root, o);
   ExperimentConfig config;
   io::TomlReader reader(root, source);
-  Reader visitor{reader};
+  Reader visitor{reader, root};
   visit(visitor, config);
   reader.finish();
   // Plug-in paths relative to the config file's directory, stored absolute (for resumes).

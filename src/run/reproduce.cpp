@@ -212,10 +212,10 @@ std::vector<std::vector<std::string>> settingsTable(const ExperimentConfig& c) {
                                    c.validation.confirmLooks)
                      : std::string())
            : "none (the GP's best is returned)"},
-      {"GP", fmt::format("population {}, {} generations, crossover {}, elitism {}, "
+      {"GP", fmt::format("population {}, {} generations, crossover {:.3g}, elitism {}, "
                          "tournament {}, size penalty {} per node",
-                         c.gp.population, c.gp.generations, c.gp.crossoverRate, c.gp.elitism,
-                         c.gp.tournamentSize, c.gp.sizePenalty)},
+                         c.gp.population, c.gp.generations, gp::crossoverProbability(c.gp),
+                         c.gp.elitism, c.gp.tournamentSize, c.gp.sizePenalty)},
       {"primitives", c.primitives + (c.withOriginal ? " (features added to the variables)"
                                                     : " (features replace the variables)")},
       {"long test",

@@ -1,27 +1,28 @@
 // gp: the generational evolution loop of the paper (section 4): elitism, tournament selection,
-// the five operators with the paper's probabilities, and a size penalty; fitness maximised.
+// the registered variation operators drawn by weight (by default the paper's five with its
+// probabilities), and a size penalty; fitness maximised.
 #pragma once
 
 #include <cstdint>
 #include <functional>
+#include <map>
+#include <string>
 #include <vector>
 
 #include "gpfd/gp/evaluator.hpp"
+#include "gpfd/gp/operator_registry.hpp"
 #include "gpfd/gp/search_space.hpp"
 #include "gpfd/util/rng.hpp"
 
 namespace gpfd::gp {
 
-// Defaults are the paper's: crossover 0.7, of which 1/6 feature-list crossover; the remaining 0.3
-// to node mutation, tree mutation and shrinkage in the ratio 2 : 1 : 1; 10% elitism.
+// Defaults are the paper's: the operators' default weights (operator_registry.cpp) and 10% elitism.
 struct GpConfig {
   int population = 100;
   int generations = 50;
-  double crossoverRate = 0.7;
-  double listCrossoverShare = 1.0 / 6.0;
-  double nodeMutationWeight = 2.0;
-  double treeMutationWeight = 1.0;
-  double shrinkageWeight = 1.0;
+  // Weights of the variation operators by registered name; an operator left out has its default
+  // weight. Each is finite and non-negative, and not all are zero.
+  std::map<std::string, double> operatorWeights;
   double elitism = 0.1;  // Fraction of the population copied unchanged (rounded).
   int tournamentSize = 3;
   double sizePenalty = 0.0;  // Subtracted per node from the raw fitness.
@@ -32,20 +33,14 @@ struct GpConfig {
   std::uint64_t seed = 1;
 };
 
-// Throws InputError naming the first out-of-range field.
+// Throws InputError naming the first out-of-range field as its config key ("gp.elitism",
+// "gp.operators.NAME"); an unknown operator's error lists the known ones.
 void validate(const GpConfig& config);
 
-enum class Operator {
-  SubtreeCrossover,
-  FeatureListCrossover,
-  NodeMutation,
-  TreeMutation,
-  Shrinkage
-};
-inline constexpr int kOperatorCount = 5;
-
-// Probabilities of the operators, in the order of Operator, from the config.
+// Probabilities of the registered operators, in registration order: weight / total weight.
 std::vector<double> operatorProbabilities(const GpConfig& config);
+// The probability that a child comes from an operator with two parents.
+double crossoverProbability(const GpConfig& config);
 
 struct Individual {
   expr::Genome genome;
@@ -103,7 +98,7 @@ class Evolution {
   const Individual& best() const;  // Best individual of the current population.
   const GpConfig& config() const { return config_; }
   const SearchSpace& space() const { return space_; }
-  // Operator applications so far, in the order of Operator (for frequency checks).
+  // Operator applications so far, in registration order (for frequency checks).
   const std::vector<long>& operatorCounts() const { return operatorCounts_; }
 
   EvolutionState state() const;
@@ -118,13 +113,16 @@ class Evolution {
   expr::Genome reduced(expr::Genome genome) const;
 
   GpConfig config_;
+  // The registered operators when the run began, and their probabilities.
+  std::vector<OperatorInfo> operators_;
+  std::vector<double> probabilities_;
   SearchSpace space_;
   Evaluator& evaluator_;
   GenomeReducer reduce_;
   Rng rng_;
   int generation_ = -1;
   std::vector<Individual> population_;
-  std::vector<long> operatorCounts_ = std::vector<long>(kOperatorCount, 0);
+  std::vector<long> operatorCounts_;
 };
 
 }  // namespace gpfd::gp

@@ -24,8 +24,9 @@ class TomlReader {
             const std::vector<std::string>& choices = {});
   void read(const std::string& section, const std::string& key, bool& out);
   void read(const std::string& section, const std::string& key, int& out, long lo, long hi);
-  // A 64-bit unsigned value (a seed). TOML integers are signed 64-bit, so values of 2^63 and above
-  // are written as their two's complement (a negative integer) and read back the same way.
+  // A 64-bit unsigned value from a TOML integer (signed 64-bit): a negative one comes back as its
+  // two's complement. The experiment config refuses negative seeds and writes 2^63 and above as
+  // text (run/experiment_config.cpp).
   void read(const std::string& section, const std::string& key, std::uint64_t& out);
   void read(const std::string& section, const std::string& key, double& out, double lo, double hi);
   void read(const std::string& section, const std::string& key, std::vector<double>& out);

@@ -1,0 +1,156 @@
+// Config checks: the operator table gp.operators (the shipped configs give the earlier rates bit
+// for bit; bad weights and the removed keys are refused at their place), seeds (any uint64, never
+// a negative one, from a file, --set or --seed), the run's name, and unknown keys.
+#include "gpfd/run/experiment_config.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <limits>
+
+#include "cli_helpers.hpp"
+#include "gpfd/util/error.hpp"
+
+namespace gpfd::run {
+namespace {
+
+// The InputError of parsing `text` with `overrides`, as "where: what"; "" when it parses.
+std::string refusal(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  try {
+    parseExperimentConfig(text, "c.toml", overrides);
+  } catch (const InputError& e) {
+    return e.where() + ": " + e.what();
+  }
+  return "";
+}
+
+bool has(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+TEST(ExperimentConfig, ShippedConfigsGiveTheEarlierOperatorRatesBitForBit) {
+  // What crossover = 0.7, list_crossover_share = 0.1666666667 and the weights 2 : 1 : 1 gave.
+  const double crossover = 0.7, share = 0.1666666667, mutation = 1.0 - crossover;
+  const std::vector<double> earlier{crossover * (1.0 - share), crossover * share,
+                                    mutation * 2.0 / 4.0, mutation * 1.0 / 4.0,
+                                    mutation * 1.0 / 4.0};
+  int configs = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(GPFD_SOURCE_DIR "/configs")) {
+    if (entry.path().extension() != ".toml") continue;
+    const auto config = loadExperimentConfig(entry.path().string());
+    const auto p = gp::operatorProbabilities(config.gp);
+    for (std::size_t o = 0; o < earlier.size(); ++o) {
+      EXPECT_EQ(p[o], earlier[o]) << entry.path() << " operator " << o;
+    }
+    ++configs;
+  }
+  EXPECT_GE(configs, 10);
+}
+
+TEST(ExperimentConfig, OperatorWeightsFromTheTable) {
+  const auto config =
+      parseExperimentConfig("[gp]\noperators = { node_mutation = 3, shrinkage = 0 }\n", "c.toml",
+                            {"gp.operators.tree_mutation=0.5"});
+  EXPECT_EQ(config.gp.operatorWeights.at("node_mutation"), 3.0);
+  EXPECT_EQ(config.gp.operatorWeights.at("shrinkage"), 0.0);
+  EXPECT_EQ(config.gp.operatorWeights.at("tree_mutation"), 0.5);
+  EXPECT_EQ(config.gp.operatorWeights.count("subtree_crossover"), 0u);  // Its default.
+  // The resolved config lists every operator's weight and reads back the same probabilities.
+  const auto text = formatExperimentConfig(config);
+  EXPECT_TRUE(has(text, "subtree_crossover = ")) << text;
+  EXPECT_EQ(gp::operatorProbabilities(parseExperimentConfig(text, "resolved").gp),
+            gp::operatorProbabilities(config.gp));
+}
+
+TEST(ExperimentConfig, BadOperatorWeightsAreRefusedAtTheirPlace) {
+  const auto unknown = refusal("[gp.operators]\nnode_mutaton = 1\n");
+  EXPECT_TRUE(has(unknown, "c.toml:2:16 gp.operators.node_mutaton: ")) << unknown;
+  EXPECT_TRUE(has(unknown, "(did you mean 'node_mutation'?)")) << unknown;
+  const auto farOff = refusal("", {"gp.operators.zzz=1"});
+  EXPECT_TRUE(has(farOff, "--set gp.operators.zzz: ")) << farOff;
+  EXPECT_TRUE(has(farOff, "known: subtree_crossover, feature_list_crossover")) << farOff;
+  EXPECT_TRUE(
+      has(refusal("[gp.operators]\nshrinkage = -1\n"), "c.toml:2:13 gp.operators.shrinkage"));
+  EXPECT_TRUE(has(refusal("[gp.operators]\nshrinkage = inf\n"), "non-negative"));
+  EXPECT_TRUE(has(refusal("[gp.operators]\nshrinkage = nan\n"), "non-negative"));
+  EXPECT_TRUE(has(refusal("[gp.operators]\nshrinkage = \"1\"\n"), "must be a number"));
+  EXPECT_TRUE(has(refusal("[gp]\noperators = 1\n"), "gp.operators must be a table"));
+  const auto zero = refusal(
+      "[gp.operators]\nsubtree_crossover = 0\nfeature_list_crossover = 0\nnode_mutation = 0\n"
+      "tree_mutation = 0\nshrinkage = 0\n");
+  EXPECT_TRUE(has(zero, "must not all be zero")) << zero;
+}
+
+TEST(ExperimentConfig, TheEarlierOperatorKeysPointToTheTable) {
+  for (const std::string key : {"crossover", "list_crossover_share", "node_mutation_weight",
+                                "tree_mutation_weight", "shrinkage_weight"}) {
+    const auto file = refusal("[gp]\n" + key + " = 0.5\n");
+    EXPECT_TRUE(has(file, "c.toml:2:")) << file;
+    EXPECT_TRUE(has(file, "gp." + key + " is no longer a key")) << file;
+    EXPECT_TRUE(has(file, "gp.operators = { subtree_crossover = ")) << file;
+    EXPECT_TRUE(has(refusal("", {"gp." + key + "=0.5"}), "gp.operators = {"));
+  }
+}
+
+TEST(ExperimentConfig, EverySeedGpfdPrintsIsAccepted) {
+  const std::uint64_t big = 10696572954110202655u;  // A run seed of `evolve --runs`.
+  EXPECT_EQ(parseExperimentConfig("seed = \"10696572954110202655\"\n", "c.toml").seed, big);
+  EXPECT_EQ(parseExperimentConfig("", "c.toml", {"seed=10696572954110202655"}).seed, big);
+  EXPECT_EQ(parseExperimentConfig("", "c.toml", {"seed=18446744073709551615"}).seed,
+            std::numeric_limits<std::uint64_t>::max());
+  EXPECT_EQ(parseExperimentConfig("seed = 9223372036854775807\n", "c.toml").seed,
+            std::uint64_t{9223372036854775807});
+  EXPECT_EQ(parseExperimentConfig("seed = 0\n", "c.toml").seed, 0u);
+  ExperimentConfig config;
+  config.seed = big;
+  const auto text = formatExperimentConfig(config);
+  EXPECT_TRUE(has(text, "seed = '10696572954110202655'")) << text;
+  EXPECT_EQ(parseExperimentConfig(text, "resolved").seed, big);
+}
+
+TEST(ExperimentConfig, NegativeOrMalformedSeedsAreRefused) {
+  const auto negative = refusal("", {"seed=-5"});
+  EXPECT_TRUE(has(negative, "--set seed: seed must be an integer in [0, 18446744073709551615]"))
+      << negative;
+  EXPECT_TRUE(has(negative, "seed = \"18446744073709551611\"")) << negative;
+  EXPECT_TRUE(has(refusal("seed = -1\n"), "c.toml:1:8 seed: ")) << refusal("seed = -1\n");
+  EXPECT_TRUE(has(refusal("", {"seed=18446744073709551616"}), "not '18446744073709551616'"));
+  EXPECT_TRUE(has(refusal("seed = \"12a\"\n"), "not '12a'"));
+  EXPECT_TRUE(has(refusal("seed = \"\"\n"), "seed must be an integer"));
+  EXPECT_TRUE(has(refusal("seed = 1.5\n"), "seed must be an integer"));
+}
+
+TEST(ExperimentConfig, TheNameIsADirectoryNameInsideResults) {
+  for (const std::string bad : {"../../../x", "", ".", "..", ".hidden", "a/b", "a b", "x\\\\y"}) {
+    const auto why = refusal("name = \"" + bad + "\"\n");
+    EXPECT_TRUE(has(why, "c.toml:1:8 name: name must be letters, digits")) << bad << ": " << why;
+  }
+  EXPECT_TRUE(has(refusal("", {"name=../x"}), "--set name: "));
+  EXPECT_EQ(refusal("name = \"cartpole-quick_2.v1\"\n"), "");
+}
+
+TEST(ExperimentConfig, AnUnknownKeyGetsASuggestionOrTheKnownKeys) {
+  for (const auto& why : {refusal("[gp]\nnope = 1\n"), refusal("", {"gp.nope=1"})}) {
+    EXPECT_TRUE(has(why, "unknown key 'gp.nope' (known: elitism, generations, operators, ")) << why;
+  }
+  for (const auto& why : {refusal("[gp]\npopulaton = 1\n"), refusal("", {"gp.populaton=1"})}) {
+    EXPECT_TRUE(has(why, "(did you mean 'population'?)")) << why;
+  }
+}
+
+// The bug as reported: `evolve --seed` refused the seeds `evolve --runs` prints.
+TEST(ExperimentConfig, EvolveTakesABigSeedAndStoresIt) {
+  const auto dir = gpfd::testing::freshDir("big-seed");
+  const auto r = gpfd::testing::runGpfd(
+      "evolve cartpole-quick --seed 10696572954110202655 --population 4 --generations 1 "
+      "--set validation.candidates=0 --quiet --out " +
+      dir);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(has(gpfd::testing::readText(dir + "/config.toml"), "seed = '10696572954110202655'"));
+  const auto negative =
+      gpfd::testing::runGpfd("evolve cartpole-quick --set seed=-5 --out " + dir + "-2");
+  EXPECT_EQ(negative.status, 2) << negative.output;
+}
+
+}  // namespace
+}  // namespace gpfd::run
