@@ -3,7 +3,7 @@
 // the end-to-end figure; this splits it.
 #include <benchmark/benchmark.h>
 
-#include "gpfd/jit/bench_functions.hpp"
+#include "gpfd/experiments/bench_functions.hpp"
 #include "gpfd/jit/program.hpp"
 #include "gpfd/jit/x86_compiler.hpp"
 
@@ -12,20 +12,20 @@ namespace {
 using namespace gpfd;
 
 expr::Genome figure3Genome(int depth) {
-  return expr::Genome::fromFeatures(
-      {jit::benchTree(jit::kBenchDefaultSeed, jit::BenchSet::Arithmetic, depth, 0)});
+  return expr::Genome::fromFeatures({experiments::benchTree(
+      experiments::kBenchDefaultSeed, experiments::BenchSet::Arithmetic, depth, 0)});
 }
 
 void BM_Lower(benchmark::State& state) {
   const auto genome = figure3Genome(static_cast<int>(state.range(0)));
-  for (auto _ : state) benchmark::DoNotOptimize(jit::lower(genome, jit::kBenchVariables));
+  for (auto _ : state) benchmark::DoNotOptimize(jit::lower(genome, experiments::kBenchVariables));
   state.counters["nodes"] = static_cast<double>(genome.size());
 }
 
 void BM_CompileScalar(benchmark::State& state) {
   const auto genome = figure3Genome(static_cast<int>(state.range(0)));
   for (auto _ : state) {
-    const auto code = jit::compileScalar(jit::lower(genome, jit::kBenchVariables));
+    const auto code = jit::compileScalar(jit::lower(genome, experiments::kBenchVariables));
     benchmark::DoNotOptimize(code.entry());
   }
   state.counters["nodes"] = static_cast<double>(genome.size());
@@ -38,7 +38,7 @@ void BM_CompileBatch(benchmark::State& state) {
   }
   const auto genome = figure3Genome(static_cast<int>(state.range(0)));
   for (auto _ : state) {
-    const auto code = jit::compileBatch(jit::lower(genome, jit::kBenchVariables));
+    const auto code = jit::compileBatch(jit::lower(genome, experiments::kBenchVariables));
     benchmark::DoNotOptimize(code.entry());
   }
 }

@@ -4,12 +4,12 @@
 #include <filesystem>
 
 #include "command.hpp"
+#include "gpfd/experiments/toy_task.hpp"
 #include "gpfd/expr/features_file.hpp"
 #include "gpfd/expr/simplify.hpp"
 #include "gpfd/run/thread_evaluator.hpp"
-#include "gpfd/run/toy_task.hpp"
 #include "gpfd/service/resources.hpp"
-#include "gpfd/util/directory_lock.hpp"
+#include "gpfd/service/results_directory.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::app {
@@ -26,15 +26,15 @@ struct ToyOptions {
 };
 
 int runToy(const ToyOptions& o) {
-  auto config = run::toyGpConfig(o.seed);
+  auto config = experiments::toyGpConfig(o.seed);
   if (o.population > 0) config.population = o.population;
   if (o.generations > 0) config.generations = o.generations;
-  const DirectoryLock lock(o.out);
+  const DirectoryLock lock = service::lockDirectory(o.out, "output directory");
 
-  const run::ToyTask task(o.samples, deriveSeed(o.seed, 7));
+  const experiments::ToyTask task(o.samples, deriveSeed(o.seed, 7));
   run::ThreadEvaluator evaluator([&task](const expr::Genome& g, Rng&) { return task.rSquared(g); },
                                  service::usableThreads(o.threads));
-  gp::Evolution evolution(config, run::toySearchSpace(), evaluator);
+  gp::Evolution evolution(config, experiments::toySearchSpace(), evaluator);
   evolution.run([&](const gp::GenerationStats& s) {
     if (!o.quiet) {
       fmt::print("gen {:3d}  best {:.6f}  mean {:.4f}  features {:.2f}  size {:.1f}  {:.2f}s\n",
@@ -45,7 +45,7 @@ int runToy(const ToyOptions& o) {
   });
 
   const auto& best = evolution.best();
-  const auto& names = run::ToyTask::variableNames();
+  const auto& names = experiments::ToyTask::variableNames();
   const double r2 = task.rSquared(best.genome);
   expr::FeaturesFile file;
   file.env = "toy";

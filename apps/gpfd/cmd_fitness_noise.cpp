@@ -5,9 +5,9 @@
 #include <set>
 
 #include "command.hpp"
+#include "gpfd/experiments/fitness_noise.hpp"
 #include "gpfd/gp/fitness_cache.hpp"
 #include "gpfd/run/checkpoint.hpp"
-#include "gpfd/run/fitness_noise.hpp"
 #include "gpfd/service/resources.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
@@ -40,8 +40,8 @@ int fitnessNoise(const NoiseOptions& o) {
       "{} trials\n",
       config.name, o.run, genomes.size(), o.pairs, o.replications, config.trials);
   std::fflush(stdout);
-  const auto report = run::measureFitnessNoise(config, genomes, o.pairs, o.replications, o.seed,
-                                               service::usableThreads(o.threads));
+  const auto report = experiments::measureFitnessNoise(config, genomes, o.pairs, o.replications,
+                                                       o.seed, service::usableThreads(o.threads));
   fmt::print("pair  sd(a)     sd(b)     var(a-b) paired  var(a-b) unpaired\n");
   for (std::size_t p = 0; p < report.pairs.size(); ++p) {
     const auto& pair = report.pairs[p];

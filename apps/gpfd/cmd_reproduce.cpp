@@ -1,11 +1,9 @@
 // `gpfd reproduce`: the paper's experiments, figures and report in one command.
 #include <fmt/format.h>
 
-#include "bench_jit.hpp"
 #include "command.hpp"
+#include "gpfd/experiments/reproduce.hpp"
 #include "gpfd/jit/x86_compiler.hpp"
-#include "gpfd/run/reproduce.hpp"
-#include "gpfd/service/configs.hpp"
 #include "gpfd/service/resources.hpp"
 #include "gpfd/util/error.hpp"
 #include "gpfd/version.hpp"
@@ -27,20 +25,8 @@ struct ReproduceCli {
   std::string baseline;
 };
 
-// The JIT benchmark of Figure 3, smaller when `quick`.
-void benchJit(const std::string& dir, bool quick) {
-  BenchJitArgs args;
-  args.out = dir;
-  args.print = false;
-  if (quick) {
-    args.calls = 200000;
-    args.runs = 3;
-  }
-  runBenchJit(args);
-}
-
 int reproduceCommand(const ReproduceCli& c) {
-  run::ReproduceOptions o;
+  experiments::ReproduceOptions o;
   o.paperScale = c.scale == "paper";
   o.seed = c.seed;
   o.outDir = c.out;
@@ -52,14 +38,10 @@ int reproduceCommand(const ReproduceCli& c) {
   o.gpRuns = c.gpRuns;
   o.overrides = c.sets;
   o.baselineDir = c.baseline;
-  o.loadConfig = [](const std::string& name, const std::vector<std::string>& overrides) {
-    return service::loadConfig(name, overrides);
-  };
-  o.benchJit = benchJit;
   std::vector<std::string> figures;
   for (const auto& f : c.figures) {
     if (f == "all") {
-      for (const auto& figure : run::kFigures) {
+      for (const auto& figure : experiments::kFigures) {
         // Figure 3 measures the JIT: a build without it leaves it out.
         if (figure != "fig3" || jit::jitAvailable()) figures.push_back(figure);
       }
@@ -70,7 +52,7 @@ int reproduceCommand(const ReproduceCli& c) {
   o.stop = &stopOnInterrupt(
       "\ngpfd reproduce: stopping at the next checkpoint; press Ctrl-C again to stop at once "
       "(a rerun continues from what is saved)\n");
-  run::reproduce(figures, o);
+  experiments::reproduce(figures, o);
   return 0;
 }
 

@@ -19,14 +19,6 @@ std::string runDirName(int run, int runs) {
   return fmt::format("run-{:0{}d}", run, runs >= 100 ? 3 : 2);
 }
 
-std::unique_ptr<Discovery> startOrResume(const ExperimentConfig& config,
-                                         const DiscoveryOptions& options) {
-  if (std::filesystem::exists(options.outDir + "/config.toml")) {
-    return Discovery::resume(options, config, std::nullopt);
-  }
-  return Discovery::start(config, options);
-}
-
 RunOutcome outcomeOf(const Discovery& discovery, int run) {
   RunOutcome o;
   o.run = run;

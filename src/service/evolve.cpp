@@ -15,20 +15,6 @@ namespace gpfd::service {
 namespace {
 namespace fs = std::filesystem;
 
-// The run in options.outDir: resumed from its checkpoint once it has been started there
-// (config.toml; it must have been started with `config` when given), else started with `config`.
-// `generations` extends a resumed run or sets a fresh one's. The one place a run starts or resumes.
-std::unique_ptr<run::Discovery> openRun(const std::optional<run::ExperimentConfig>& config,
-                                        const run::DiscoveryOptions& options,
-                                        std::optional<int> generations) {
-  if (!config || fs::exists(options.outDir + "/config.toml")) {
-    return run::Discovery::resume(options, config, generations);
-  }
-  run::ExperimentConfig fresh = *config;
-  if (generations) fresh.gp.generations = *generations;
-  return run::Discovery::start(fresh, options);
-}
-
 // Runs (or continues) one run; whether it finished. `number` is its place in a set (1 alone).
 bool runOne(run::Discovery& discovery, const std::string& dir, const std::string& label, int number,
             const std::string& resumeDir, EvolveProgress& progress, const std::atomic<bool>& stop) {
@@ -60,7 +46,7 @@ EvolveResult runSet(const run::ExperimentConfig& base, int runs,
     config.seed = run::runSeed(base.seed, r);
     run::DiscoveryOptions one = options;
     one.outDir = options.outDir + "/" + run::runDirName(r, runs);
-    const DirectoryLock lock = lockRunDirectory(one.outDir);  // Also against a resume of it.
+    const DirectoryLock lock = lockDirectory(one.outDir);  // Also against a resume of it.
     const auto discovery = openRun(config, one, generations);
     const std::string label = fmt::format("[run {}/{}] ", r, runs);
     if (!runOne(*discovery, one.outDir, label, r, options.outDir, progress, stop)) return result;
@@ -85,7 +71,7 @@ EvolveResult resume(const EvolveRequest& request, run::DiscoveryOptions options,
   if (!request.config.empty()) expected = loadConfig(request.config, {});
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw InputError("no such results directory", "resume " + dir);
-  const DirectoryLock lock = lockRunDirectory(dir);
+  const DirectoryLock lock = lockDirectory(dir);
   options.outDir = dir;
   const std::string runsJson = dir + "/runs.json";
   if (fs::exists(runsJson)) {
@@ -116,6 +102,19 @@ EvolveResult resume(const EvolveRequest& request, run::DiscoveryOptions options,
 }
 
 }  // namespace
+
+// The run in options.outDir: resumed from its checkpoint once it has been started there
+// (config.toml; it must have been started with `config` when given), else started with `config`.
+std::unique_ptr<run::Discovery> openRun(const std::optional<run::ExperimentConfig>& config,
+                                        const run::DiscoveryOptions& options,
+                                        std::optional<int> generations) {
+  if (!config || fs::exists(options.outDir + "/config.toml")) {
+    return run::Discovery::resume(options, config, generations);
+  }
+  run::ExperimentConfig fresh = *config;
+  if (generations) fresh.gp.generations = *generations;
+  return run::Discovery::start(fresh, options);
+}
 
 EvolveResult evolve(const EvolveRequest& request, EvolveProgress& progress,
                     const std::atomic<bool>& stop) {

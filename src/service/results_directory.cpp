@@ -16,8 +16,8 @@ bool holdsFiles(const std::string& dir) {
   return false;
 }
 
-DirectoryLock lockRunDirectory(const std::string& dir) {
-  return DirectoryLock(dir, "results directory");
+DirectoryLock lockDirectory(const std::string& dir, const std::string& what) {
+  return DirectoryLock(dir, what);
 }
 
 DirectoryLock claimResultsDirectory(const OutputChoice& choice, const std::string& defaultName,

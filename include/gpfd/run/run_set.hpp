@@ -20,11 +20,6 @@ std::uint64_t runSeed(std::uint64_t seed, int run);
 // "run-01", ... (three digits from 100 runs on).
 std::string runDirName(int run, int runs);
 
-// Starts the run in options.outDir, or resumes it where its config.toml already is (it must
-// then have been started with `config`).
-std::unique_ptr<Discovery> startOrResume(const ExperimentConfig& config,
-                                         const DiscoveryOptions& options);
-
 // What one finished run returned, as validation measured it.
 struct RunOutcome {
   int run = 0;

@@ -55,6 +55,14 @@ struct EvolveResult {
   std::vector<run::RunOutcome> outcomes;  // Of the finished runs, in order.
 };
 
+// The run in options.outDir: resumed from its checkpoint once it has been started there
+// (config.toml; it must then have been started with `config` when given), else started with
+// `config`; `generations` extends a resumed run or sets a fresh one's. The one place a run starts
+// or resumes (evolve below, and gpfd reproduce's runs); the caller holds the directory's lock.
+std::unique_ptr<run::Discovery> openRun(const std::optional<run::ExperimentConfig>& config,
+                                        const run::DiscoveryOptions& options,
+                                        std::optional<int> generations);
+
 // Runs the request. `stop` is checked after each generation (once its checkpoint is written).
 // InputError, before anything is written, for a bad request; the directory is locked for the
 // whole call.

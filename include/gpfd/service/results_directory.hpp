@@ -30,9 +30,9 @@ DirectoryLock claimResultsDirectory(const OutputChoice& choice, const std::strin
                                     const DirectoryCheck& check = {},
                                     const std::string& what = "results directory");
 
-// Locks a directory that a request continues (a run to resume, a run of a set), creating it when
-// missing. InputError when another process holds it.
-DirectoryLock lockRunDirectory(const std::string& dir);
+// Locks a directory that a request continues or fills in steps (a run to resume, a run of a set,
+// a reproduction), creating it when missing. InputError when another process holds it.
+DirectoryLock lockDirectory(const std::string& dir, const std::string& what = "results directory");
 
 // Whether `dir` holds any entry other than the lock file.
 bool holdsFiles(const std::string& dir);

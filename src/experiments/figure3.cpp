@@ -1,4 +1,4 @@
-#include "gpfd/jit/figure3.hpp"
+#include "gpfd/experiments/figure3.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +12,8 @@
 #include "gpfd/jit/compiled_feature_map.hpp"
 #include "gpfd/jit/fast_interpreter.hpp"
 
-namespace gpfd::jit {
+namespace gpfd::experiments {
+using namespace gpfd::jit;  // The JIT's names, used throughout.
 namespace {
 
 constexpr std::size_t kStates = 1024;  // Varying states, cycled through.
@@ -171,4 +172,4 @@ MemoryCheck measureCompileReleaseMemory(std::size_t cycles, std::uint64_t seed) 
   return check;
 }
 
-}  // namespace gpfd::jit
+}  // namespace gpfd::experiments

@@ -1,4 +1,4 @@
-#include "gpfd/run/toy_task.hpp"
+#include "gpfd/experiments/toy_task.hpp"
 
 #include <Eigen/Dense>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include "gpfd/expr/eval.hpp"
 
-namespace gpfd::run {
+namespace gpfd::experiments {
 
 ToyTask::ToyTask(int samples, std::uint64_t seed) : samples_(samples) {
   Rng rng(seed);
@@ -57,4 +57,4 @@ gp::SearchSpace toySearchSpace() {
   return space;
 }
 
-}  // namespace gpfd::run
+}  // namespace gpfd::experiments

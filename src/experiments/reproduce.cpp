@@ -1,4 +1,4 @@
-#include "gpfd/run/reproduce.hpp"
+#include "gpfd/experiments/reproduce.hpp"
 
 #include <fmt/format.h>
 
@@ -8,6 +8,7 @@
 #include <optional>
 #include <sstream>
 
+#include "gpfd/experiments/bench_jit.hpp"
 #include "gpfd/expr/features_file.hpp"
 #include "gpfd/expr/parse.hpp"
 #include "gpfd/io/gnuplot.hpp"
@@ -17,12 +18,16 @@
 #include "gpfd/run/method_verdict.hpp"
 #include "gpfd/run/run_set.hpp"
 #include "gpfd/run/validation.hpp"
+#include "gpfd/service/configs.hpp"
+#include "gpfd/service/evolve.hpp"
+#include "gpfd/service/results_directory.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/directory_lock.hpp"
 #include "gpfd/util/error.hpp"
 #include "gpfd/util/number.hpp"
 
-namespace gpfd::run {
+namespace gpfd::experiments {
+using namespace gpfd::run;  // The run module's names, used throughout.
 namespace {
 namespace fs = std::filesystem;
 
@@ -52,7 +57,7 @@ class Experiment {
   ExperimentConfig config(const std::string& base, std::vector<std::string> overrides = {}) const {
     overrides.insert(overrides.begin(), o_.overrides.begin(), o_.overrides.end());
     overrides.push_back("seed=" + std::to_string(o_.seed));
-    return o_.loadConfig(o_.paperScale ? base : base + "-quick", overrides);
+    return service::loadConfig(o_.paperScale ? base : base + "-quick", overrides);
   }
 
   // Runs, resumes, or reuses the GP run in dir()/name; returns its history. A run asked for
@@ -62,13 +67,13 @@ class Experiment {
     if (const auto done = histories_.find(name); done != histories_.end()) return done->second;
     const std::string dir = dir_ + "/" + name;
     checkStop(dir);
-    const DirectoryLock lock(dir, "results directory");  // Also against a `gpfd evolve --resume`.
+    const DirectoryLock lock = service::lockDirectory(dir);  // Also against `gpfd evolve --resume`.
     DiscoveryOptions d;
     d.outDir = dir;
     d.threads = o_.threads;
     d.version = o_.version;
     d.revision = o_.revision;
-    auto run = startOrResume(config, d);
+    auto run = service::openRun(config, d, std::nullopt);
     static const std::atomic<bool> never{false};
     run->run(
         [&](const GenerationRecord& r) {
@@ -391,7 +396,16 @@ io::Report figure1(Experiment& e) {
 }
 
 io::Report figure3(Experiment& e, const ReproduceOptions& o) {
-  if (!fs::exists(e.dir() + "/jit/jit.csv")) o.benchJit(e.dir() + "/jit", !o.paperScale);
+  if (!fs::exists(e.dir() + "/jit/jit.csv")) {
+    BenchJitArgs args;  // Smaller at the quick scale.
+    args.out = e.dir() + "/jit";
+    args.print = false;
+    if (!o.paperScale) {
+      args.calls = 200000;
+      args.runs = 3;
+    }
+    runBenchJit(args);
+  }
   io::Report r("Figure 3");
   r.heading("Figure 3: speed-up of compiled feature functions", 3);
   r.paragraph(
@@ -511,7 +525,7 @@ void reproduce(const std::vector<std::string>& figures, const ReproduceOptions& 
       throw InputError("unknown figure '" + f + "' (fig1, fig3, fig5, fig6, fig7 or all)", f);
     }
   }
-  const DirectoryLock lock(o.outDir);
+  const DirectoryLock lock = service::lockDirectory(o.outDir, "output directory");
   for (const auto& figure : figures) {
     if (!o.quiet) {
       fmt::print("{}:\n", figure);
@@ -559,4 +573,4 @@ void reproduce(const std::vector<std::string>& figures, const ReproduceOptions& 
   if (!o.quiet) fmt::print("report: {}/report.html and report.md\n", o.outDir);
 }
 
-}  // namespace gpfd::run
+}  // namespace gpfd::experiments

@@ -1,4 +1,4 @@
-// run: `gpfd reproduce`, the paper's experiments regenerated with figures and a report:
+// experiments: `gpfd reproduce`, the paper's experiments regenerated with figures and a report:
 //   fig1  cart-pole, PG + Rprop: original variables, original + sin/cos of the angle, GP features
 //   fig3  the JIT speed-up (gpfd bench jit)
 //   fig5  Acrobot: GP run, discovered vs original features
@@ -13,13 +13,12 @@
 
 #include <atomic>
 #include <cstdint>
-#include <functional>
 #include <string>
 #include <vector>
 
 #include "gpfd/run/experiment_config.hpp"
 
-namespace gpfd::run {
+namespace gpfd::experiments {
 
 struct ReproduceOptions {
   bool paperScale = false;  // false: the -quick configs.
@@ -41,12 +40,6 @@ struct ReproduceOptions {
   // benchmark is compared with; empty: none.
   std::string baselineDir;
   const std::atomic<bool>* stop = nullptr;  // Set (e.g. by SIGINT) to stop after a checkpoint.
-  // Loads a shipped config by name (configs/NAME.toml) with key=value overrides.
-  std::function<ExperimentConfig(const std::string& name,
-                                 const std::vector<std::string>& overrides)>
-      loadConfig;
-  // Runs the JIT benchmark (gpfd bench jit) into a directory, smaller when `quick`.
-  std::function<void(const std::string& dir, bool quick)> benchJit;
 };
 
 inline const std::vector<std::string> kFigures{"fig1", "fig3", "fig5", "fig6", "fig7"};
@@ -56,4 +49,4 @@ inline const std::vector<std::string> kFigures{"fig1", "fig3", "fig5", "fig6", "
 // process writes into OUT; Interrupted when `stop` was set (after the step that was running).
 void reproduce(const std::vector<std::string>& figures, const ReproduceOptions& options);
 
-}  // namespace gpfd::run
+}  // namespace gpfd::experiments

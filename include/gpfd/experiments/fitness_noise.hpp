@@ -1,8 +1,8 @@
-// run: how noisy GP fitness is, and whether common random numbers help (`gpfd fitness-noise`).
-// Selection compares individuals by fitness, a mean of K noisy trials; what matters is the
-// variance of the difference of two individuals' fitness. With common random numbers both are
-// evaluated on the same trial seeds (paired); otherwise on independent seeds. Pairing helps only
-// where trials with the same seed are positively correlated across feature sets.
+// experiments: how noisy GP fitness is, and whether common random numbers help (`gpfd
+// fitness-noise`). Selection compares individuals by fitness, a mean of K noisy trials; what
+// matters is the variance of the difference of two individuals' fitness. With common random numbers
+// both are evaluated on the same trial seeds (paired); otherwise on independent seeds. Pairing
+// helps only where trials with the same seed are positively correlated across feature sets.
 #pragma once
 
 #include <cstdint>
@@ -11,7 +11,7 @@
 #include "gpfd/expr/genome.hpp"
 #include "gpfd/run/experiment_config.hpp"
 
-namespace gpfd::run {
+namespace gpfd::experiments {
 
 struct PairNoise {
   std::size_t a = 0, b = 0;       // Indices of the genomes.
@@ -35,8 +35,8 @@ struct NoiseReport {
 // evaluations of each (the config's short trial, config.trials trials each): per replication r,
 // a and b on one seed, and b again on an independent seed. Same inputs, same report, whatever
 // `threads`.
-NoiseReport measureFitnessNoise(const ExperimentConfig& config,
+NoiseReport measureFitnessNoise(const run::ExperimentConfig& config,
                                 const std::vector<expr::Genome>& genomes, int pairs,
                                 int replications, std::uint64_t seed, int threads);
 
-}  // namespace gpfd::run
+}  // namespace gpfd::experiments

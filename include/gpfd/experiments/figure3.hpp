@@ -1,8 +1,8 @@
-// jit: the measurements behind `gpfd bench jit`, the paper's Figure 3 reproduced and extended
-// (Girgin & Preux, section 3.3: complete trees of depth 2..8, each run 1,000,000 times, averaged
-// over 10 runs). For each operator set, depth and run it times the reference tree walker, the fast
-// interpreter, the JIT, the AOT reference (when given) and the AVX2 batch kernel, after checking
-// that all of them agree bit for bit. Times are CPU time of the measuring thread.
+// experiments: the measurements behind `gpfd bench jit`, the paper's Figure 3 reproduced and
+// extended (Girgin & Preux, section 3.3: complete trees of depth 2..8, each run 1,000,000 times,
+// averaged over 10 runs). For each operator set, depth and run it times the reference tree walker,
+// the fast interpreter, the JIT, the AOT reference (when given) and the AVX2 batch kernel, after
+// checking that all of them agree bit for bit. Times are CPU time of the measuring thread.
 #pragma once
 
 #include <cstdint>
@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "gpfd/jit/bench_functions.hpp"
+#include "gpfd/experiments/bench_functions.hpp"
 #include "gpfd/jit/x86_compiler.hpp"
 
-namespace gpfd::jit {
+namespace gpfd::experiments {
 
 struct Figure3Options {
   int minDepth = 2;
@@ -33,7 +33,7 @@ struct Figure3Row {
 };
 
 // The AOT reference function of (set, depth, run), or nullptr when there is none.
-using AotLookup = std::function<ScalarFunction(BenchSet, int depth, int run)>;
+using AotLookup = std::function<jit::ScalarFunction(BenchSet, int depth, int run)>;
 
 // Rows ordered by set, depth, method. The aot rows appear for a depth only when every run has a
 // reference function. Throws std::runtime_error when any two methods disagree on some state, and
@@ -49,4 +49,4 @@ struct MemoryCheck {
 };
 MemoryCheck measureCompileReleaseMemory(std::size_t cycles, std::uint64_t seed);
 
-}  // namespace gpfd::jit
+}  // namespace gpfd::experiments

@@ -1,4 +1,4 @@
-// jit: the random functions of the paper's Figure 3 (Girgin & Preux, section 3.3): complete
+// experiments: the random functions of the paper's Figure 3 (Girgin & Preux, section 3.3): complete
 // trees of a given depth over 4 state variables, for `gpfd bench jit` and for the ahead-of-time
 // reference code generated from them at build time (tools/aot). Both sides call these functions,
 // so the trees are identical for the same seed.
@@ -10,7 +10,7 @@
 #include "gpfd/expr/genome.hpp"
 #include "gpfd/util/rng.hpp"
 
-namespace gpfd::jit {
+namespace gpfd::experiments {
 
 enum class BenchSet : int {
   Arithmetic = 0,  // {+, -, *, /}: complete binary trees, 2^d - 1 nodes.
@@ -33,4 +33,4 @@ std::string_view benchSetName(BenchSet set);  // "arithmetic" or "unary".
 // pure function of (seed, set, depth, run).
 expr::Tree benchTree(std::uint64_t seed, BenchSet set, int depth, int run);
 
-}  // namespace gpfd::jit
+}  // namespace gpfd::experiments

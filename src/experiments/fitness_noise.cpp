@@ -1,4 +1,4 @@
-#include "gpfd/run/fitness_noise.hpp"
+#include "gpfd/experiments/fitness_noise.hpp"
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -10,7 +10,8 @@
 #include "gpfd/run/statistics.hpp"
 #include "gpfd/util/error.hpp"
 
-namespace gpfd::run {
+namespace gpfd::experiments {
+using namespace gpfd::run;  // The run module's names, used throughout.
 
 NoiseReport measureFitnessNoise(const ExperimentConfig& config,
                                 const std::vector<expr::Genome>& genomes, int pairs,
@@ -80,4 +81,4 @@ NoiseReport measureFitnessNoise(const ExperimentConfig& config,
   return report;
 }
 
-}  // namespace gpfd::run
+}  // namespace gpfd::experiments

@@ -6,15 +6,15 @@
 #include <cstdint>
 #include <string>
 
-#include "gpfd/jit/bench_functions.hpp"
+#include "gpfd/experiments/bench_functions.hpp"
 
-namespace gpfd::app {
+namespace gpfd::experiments {
 
 struct BenchJitArgs {
   std::string depths = "2-8";
   std::size_t calls = 1000000;
   int runs = 10;
-  std::uint64_t seed = jit::kBenchDefaultSeed;
+  std::uint64_t seed = kBenchDefaultSeed;
   std::string out = "bench-jit";
   std::size_t memoryCycles = 100000;
   bool print = true;  // Print the summary (it is written to OUT/jit_summary.txt either way).
@@ -24,4 +24,4 @@ struct BenchJitArgs {
 // InputError for bad arguments or an unwritable OUT.
 void runBenchJit(const BenchJitArgs& args);
 
-}  // namespace gpfd::app
+}  // namespace gpfd::experiments

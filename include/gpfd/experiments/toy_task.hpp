@@ -1,4 +1,4 @@
-// run: the built-in supervised feature-discovery task that proves the GP loop end to end.
+// experiments: the built-in supervised feature-discovery task that proves the GP loop end to end.
 // Target y = 3 x0 x1 - 2 sin(x2) + 0.5 on states drawn uniformly from [-2, 2]^3; fitness of a
 // genome = R^2 of the ordinary least-squares fit of y on its features plus a bias.
 #pragma once
@@ -10,7 +10,7 @@
 #include "gpfd/expr/print.hpp"
 #include "gpfd/gp/evolution.hpp"
 
-namespace gpfd::run {
+namespace gpfd::experiments {
 
 class ToyTask {
  public:
@@ -32,4 +32,4 @@ class ToyTask {
 gp::GpConfig toyGpConfig(std::uint64_t seed);
 gp::SearchSpace toySearchSpace();
 
-}  // namespace gpfd::run
+}  // namespace gpfd::experiments

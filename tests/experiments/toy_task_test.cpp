@@ -1,4 +1,4 @@
-#include "gpfd/run/toy_task.hpp"
+#include "gpfd/experiments/toy_task.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,8 +9,9 @@
 #include "gpfd/expr/parse.hpp"
 #include "gpfd/run/thread_evaluator.hpp"
 
-namespace gpfd::run {
+namespace gpfd::experiments {
 namespace {
+using namespace gpfd::run;
 
 TEST(ToyTask, PerfectFeaturesGiveRSquaredOne) {
   const ToyTask task(200, 1);
@@ -74,4 +75,4 @@ TEST(ToyTask, EvolveToyCommandFindsTheFeatures) {
 }
 
 }  // namespace
-}  // namespace gpfd::run
+}  // namespace gpfd::experiments

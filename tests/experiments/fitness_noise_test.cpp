@@ -1,12 +1,13 @@
-#include "gpfd/run/fitness_noise.hpp"
+#include "gpfd/experiments/fitness_noise.hpp"
 
 #include <gtest/gtest.h>
 
-#include "cli_helpers.hpp"
+#include "../run/cli_helpers.hpp"
 #include "gpfd/expr/parse.hpp"
 
-namespace gpfd::run {
+namespace gpfd::experiments {
 namespace {
+using namespace gpfd::run;
 
 TEST(FitnessNoise, PairingRemovesTheNoiseOfEqualSetsAndIsThreadIndependent) {
   const auto config = loadExperimentConfig(testing::tinyEvolveConfig("noise", 1));
@@ -26,4 +27,4 @@ TEST(FitnessNoise, PairingRemovesTheNoiseOfEqualSetsAndIsThreadIndependent) {
 }
 
 }  // namespace
-}  // namespace gpfd::run
+}  // namespace gpfd::experiments

@@ -1,8 +1,8 @@
-#include "gpfd/jit/bench_functions.hpp"
+#include "gpfd/experiments/bench_functions.hpp"
 
 #include <vector>
 
-namespace gpfd::jit {
+namespace gpfd::experiments {
 namespace {
 
 using expr::Node;
@@ -39,4 +39,4 @@ expr::Tree benchTree(std::uint64_t seed, BenchSet set, int depth, int run) {
   return tree;
 }
 
-}  // namespace gpfd::jit
+}  // namespace gpfd::experiments
