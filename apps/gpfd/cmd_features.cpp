@@ -16,6 +16,7 @@
 #include "gpfd/jit/compiled_feature_map.hpp"
 #include "gpfd/run/checkpoint.hpp"
 #include "gpfd/run/learning_task.hpp"
+#include "gpfd/run/run_set.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
 #include "gpfd/util/number.hpp"
@@ -34,6 +35,12 @@ struct FeaturesOptions {
 // A features file, or a run's results directory standing for its best.features.
 std::string featuresPath(const std::string& given) {
   if (!std::filesystem::is_directory(given)) return given;
+  if (std::filesystem::exists(given + "/runs.json")) {
+    throw InputError(
+        "a set of runs: give one run's directory in it (run-01, ...), or --front for every run's "
+        "front",
+        given);
+  }
   if (!std::filesystem::exists(given + "/best.features")) {
     throw InputError(
         "a directory without best.features: give a features file or a run's results directory",
@@ -140,22 +147,60 @@ int evaluate(const EvalOptions& o) {
   return 0;
 }
 
-// A run directory stands for its best.features; --front prints its validated front instead.
-int showFront(const std::string& dir) {
-  if (!std::filesystem::exists(dir)) throw InputError("no such run directory", dir);
-  if (!std::filesystem::is_directory(dir)) {
-    throw InputError("--front needs a run's results directory, not a file", dir);
-  }
+constexpr const char* kNoValidatedSets =
+    "no validated sets (validation.candidates = 0, or unfinished)";
+
+// The front table of the run in `dir` (which must hold its checkpoint.json); empty when the run
+// has no validated sets.
+std::string frontTable(const std::string& dir) {
   const std::string path = dir + "/checkpoint.json";
   if (!std::filesystem::exists(path)) throw InputError("no checkpoint.json: not a run", dir);
   const auto checkpoint = run::parseCheckpoint(readFile(path), path);
-  if (checkpoint.validation.sets.empty()) {
-    throw InputError("the run has no validated sets (validation.candidates = 0, or unfinished)",
-                     dir);
-  }
+  if (checkpoint.validation.sets.empty()) return {};
   const auto config = run::parseExperimentConfig(checkpoint.config, path + " (config)");
   const auto names = run::LearningTask(config, run::LearningTask::Budget::Trial).stateNames();
-  fmt::print("{}", run::formatFrontTable(checkpoint.validation.sets, names));
+  return run::formatFrontTable(checkpoint.validation.sets, names);
+}
+
+// A set of runs (`gpfd evolve --runs N`): every run's front, in run order, each under a heading
+// naming the run and its seed; a run without a front says why. InputError when no run has one.
+std::string setFronts(const std::string& dir) {
+  const std::string runsJson = dir + "/runs.json";
+  std::uint64_t seed = 0;
+  int runs = 0;
+  run::parseRunsJson(readFile(runsJson), runsJson, seed, runs);
+  std::string text;
+  bool anyFront = false;
+  for (int r = 1; r <= runs; ++r) {
+    const std::string name = run::runDirName(r, runs);
+    text += fmt::format("{}{} (seed {})\n", r > 1 ? "\n" : "", name, run::runSeed(seed, r));
+    const std::string runDir = dir + "/" + name;
+    if (!std::filesystem::exists(runDir + "/checkpoint.json")) {
+      text += "no checkpoint yet: not started\n";
+      continue;
+    }
+    const std::string table = frontTable(runDir);
+    text += table.empty() ? std::string(kNoValidatedSets) + "\n" : table;
+    anyFront = anyFront || !table.empty();
+  }
+  if (!anyFront) throw InputError(fmt::format("no run of the set has {}", kNoValidatedSets), dir);
+  return text;
+}
+
+// --front: a run's validated front, or every run's for a set of runs.
+int showFront(const std::string& dir) {
+  if (!std::filesystem::exists(dir)) throw InputError("no such run directory", dir);
+  if (!std::filesystem::is_directory(dir)) {
+    throw InputError("--front needs a run's (or a set of runs') results directory, not a file",
+                     dir);
+  }
+  if (std::filesystem::exists(dir + "/runs.json")) {
+    fmt::print("{}", setFronts(dir));
+    return 0;
+  }
+  const std::string table = frontTable(dir);
+  if (table.empty()) throw InputError(std::string("the run has ") + kNoValidatedSets, dir);
+  fmt::print("{}", table);
   return 0;
 }
 
@@ -192,7 +237,8 @@ const CommandRegistration registration{
       auto* showCmd = addCommand(*cmd, "show", "Print the features of a features file",
                                  {"infix", "sexpr"}, show);
       showCmd->add_flag("--front", show->front,
-                        "Print a run's complexity front: the best validated set at each size");
+                        "Print a run's complexity front: the best validated set at each size "
+                        "(every run's, for a set of runs)");
       auto exported = std::make_shared<FeaturesOptions>();
       auto* exportCmd =
           addCommand(*cmd, "export", "Export features as infix, S-expressions, C, NumPy or LaTeX",

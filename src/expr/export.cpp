@@ -47,24 +47,26 @@ std::string latexName(const std::string& name) {
   return out;
 }
 
+// `afterOperator` as in print.cpp's infix: the text follows a binary operator's symbol.
 std::string latex(TreeView t, std::size_t i, const VariableNames& names, int parentPrecedence,
-                  bool right) {
+                  bool right, bool afterOperator) {
   const Node& n = t[i];
-  if (n.op == Op::Const) return formatNumber(n.value);
+  if (n.op == Op::Const) return formatConstant(n.value, afterOperator, "\\left(", "\\right)");
   if (n.op == Op::Var) {
     return n.var < names.size() ? latexName(names[n.var]) : "x_{" + std::to_string(n.var) + "}";
   }
   const std::size_t a = i + 1;
   const std::size_t b = arity(n.op) == 2 ? a + t[a].length : a;
-  const auto arg = [&](std::size_t c) { return latex(t, c, names, 0, false); };
+  const auto arg = [&](std::size_t c) { return latex(t, c, names, 0, false, false); };
   switch (n.op) {
     case Op::Add:
     case Op::Sub:
     case Op::Mul: {
       const int p = info(n.op).precedence;
       const char* symbol = n.op == Op::Add ? " + " : n.op == Op::Sub ? " - " : " \\cdot ";
-      std::string s = latex(t, a, names, p, false) + symbol + latex(t, b, names, p, true);
       const bool parens = p < parentPrecedence || (p == parentPrecedence && right);
+      std::string s = latex(t, a, names, p, false, afterOperator && !parens) + symbol +
+                      latex(t, b, names, p, true, true);
       return parens ? "\\left(" + s + "\\right)" : s;
     }
     case Op::Div:
@@ -323,7 +325,7 @@ std::string exportLatex(const Genome& genome, const VariableNames& names) {
   std::string out = "\\begin{align*}\n";
   for (std::size_t k = 0; k < genome.featureCount(); ++k) {
     out += fmt::format("  \\phi_{{{}}}(s) &= {}{}\n", k + 1,
-                       latex(genome.feature(k), 0, names, 0, false),
+                       latex(genome.feature(k), 0, names, 0, false, false),
                        k + 1 < genome.featureCount() ? " \\\\" : "");
   }
   return out + "\\end{align*}\n";

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 namespace gpfd::expr {
 namespace {
 
@@ -12,11 +14,13 @@ std::string variableName(const Node& node, const VariableNames& names) {
 
 // Prints the subtree at `i`. A binary operator's text is parenthesised when it binds looser than
 // its parent, or equally tight as a right operand (so that parsing rebuilds the same tree).
+// `afterOperator`: the text follows a binary operator's symbol, where a negative constant is
+// parenthesised ("x - (-0.5)", never "x - -0.5").
 void infix(TreeView tree, std::size_t i, const VariableNames& names, int parentPrecedence,
-           bool rightOperand, std::string& out) {
+           bool rightOperand, bool afterOperator, std::string& out) {
   const Node& node = tree[i];
   if (node.op == Op::Const) {
-    out += formatNumber(node.value);
+    out += formatConstant(node.value, afterOperator, "(", ")");
     return;
   }
   if (node.op == Op::Var) {
@@ -29,11 +33,11 @@ void infix(TreeView tree, std::size_t i, const VariableNames& names, int parentP
     const bool parens =
         op.precedence < parentPrecedence || (op.precedence == parentPrecedence && rightOperand);
     if (parens) out += '(';
-    infix(tree, first, names, op.precedence, false, out);
+    infix(tree, first, names, op.precedence, false, afterOperator && !parens, out);
     out += ' ';
     out += op.sexpr;
     out += ' ';
-    infix(tree, first + tree[first].length, names, op.precedence, true, out);
+    infix(tree, first + tree[first].length, names, op.precedence, true, true, out);
     if (parens) out += ')';
     return;
   }
@@ -42,7 +46,7 @@ void infix(TreeView tree, std::size_t i, const VariableNames& names, int parentP
   std::size_t child = first;
   for (int c = 0; c < op.arity; ++c) {
     if (c > 0) out += ", ";
-    infix(tree, child, names, 0, false, out);
+    infix(tree, child, names, 0, false, false, out);
     child += tree[child].length;
   }
   out += ')';
@@ -73,9 +77,15 @@ void sexpr(TreeView tree, std::size_t i, const VariableNames& names, std::string
 
 std::string formatNumber(double value) { return fmt::format("{}", value); }
 
+std::string formatConstant(double value, bool afterOperator, std::string_view open,
+                           std::string_view close) {
+  if (!afterOperator || !std::signbit(value)) return formatNumber(value);
+  return fmt::format("{}{}{}", open, formatNumber(value), close);
+}
+
 std::string toInfix(TreeView tree, const VariableNames& names) {
   std::string out;
-  if (!tree.empty()) infix(tree, 0, names, 0, false, out);
+  if (!tree.empty()) infix(tree, 0, names, 0, false, false, out);
   return out;
 }
 

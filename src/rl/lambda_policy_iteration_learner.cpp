@@ -55,7 +55,10 @@ const ParamTable<Settings>& table() {
             [](const Settings& c) {
               std::string text;
               for (double w : c.algorithm.initialWeights) {
-                text += (text.empty() ? "" : ",") + numberText(w);
+                // Appended piece by piece: "literal" + temporary string makes GCC 12 report a
+                // false -Wrestrict inside std::string::insert.
+                if (!text.empty()) text += ',';
+                text += numberText(w);
               }
               return text;
             })

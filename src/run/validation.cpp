@@ -241,7 +241,7 @@ std::string formatFrontCsv(const std::vector<ValidatedSet>& sets,
                            const std::vector<std::string>& stateNames) {
   const std::size_t dim = stateNames.size();
   const auto& original = sets[originalIndex(sets)];
-  std::string csv = "size,features,mean,se,seeds,p_vs_original,set,expressions\n";
+  std::string csv = "size,features,selection,selection_se,seeds,p_vs_original,set,expressions\n";
   for (const std::size_t i : frontIndices(sets, dim)) {
     const auto& s = sets[i];
     const Summary summary = s.summary();
@@ -259,7 +259,7 @@ std::string formatFrontTable(const std::vector<ValidatedSet>& sets,
   const std::size_t dim = stateNames.size();
   const auto& original = sets[originalIndex(sets)];
   std::string text = fmt::format("{:>5}  {:>8}  {:<22}  {:>9}  {}\n", "nodes", "features",
-                                 "validated (mean +- SE)", "p vs orig", "features");
+                                 "selection (mean +- SE)", "p vs orig", "features");
   for (const std::size_t i : frontIndices(sets, dim)) {
     const auto& s = sets[i];
     const Summary summary = s.summary();
@@ -272,6 +272,18 @@ std::string formatFrontTable(const std::vector<ValidatedSet>& sets,
                         featuresText(s, stateNames));
   }
   return text;
+}
+
+std::string comparisonVerdict(const PairedComparison& paired, const std::string& other,
+                              const std::string& seeds) {
+  if (paired.p < 0.05 && paired.meanDifference != 0.0) {
+    return fmt::format("{} than {} on {} by {:.4g} (paired t-test p = {:.3g})",
+                       paired.meanDifference > 0.0 ? "better" : "worse", other, seeds,
+                       std::fabs(paired.meanDifference), paired.p);
+  }
+  return fmt::format(
+      "not significantly different from {} on {} (difference {:.4g}, paired t-test p = {:.3g})",
+      other, seeds, paired.meanDifference, paired.p);
 }
 
 std::string formatMeanSe(const Summary& summary) {
@@ -291,21 +303,24 @@ expr::FeaturesFile returnedFeaturesFile(const ValidationState& state, const expr
   file.genome = set.isOriginal() ? identityGenome(dim) : prepared;
   file.meta["experiment"] = config.name;
   file.meta["seed"] = std::to_string(config.seed);
-  file.meta["validated"] = formatMeanSe(summarize(*reported.returned));
   const auto confirmed = reported.returned->size();
   const bool endedEarly = confirmed < static_cast<std::size_t>(config.validation.confirmSeeds);
-  file.meta["validated_by"] =
-      reported.confirmed
-          ? fmt::format("confirmation on {} fresh seeds (validation.confirm_params, measure {}{})",
-                        confirmed, measureName(config.validation.confirmMeasure),
-                        endedEarly ? fmt::format("; a clear difference ended it before the {} "
-                                                 "seeds planned",
-                                                 config.validation.confirmSeeds)
-                                   : std::string())
-          : "validation (the best of the candidates: biased upwards)";
-  if (reported.confirmed) file.meta["selection"] = formatMeanSe(set.summary());
+  if (reported.confirmed) {
+    file.meta["confirmed"] = formatMeanSe(summarize(*reported.returned));
+    file.meta["confirmed_by"] = fmt::format(
+        "{} fresh seeds (validation.confirm_params, measure {}{})", confirmed,
+        measureName(config.validation.confirmMeasure),
+        endedEarly ? fmt::format("; a clear difference ended it before the {} seeds planned",
+                                 config.validation.confirmSeeds)
+                   : std::string());
+  }
+  file.meta["selection"] = formatMeanSe(set.summary());
+  file.meta["selection_by"] = fmt::format(
+      "{} validation seeds (the mean that chooses among the candidates: biased upwards for the "
+      "winner)",
+      set.scores.size());
   file.meta["original"] = formatMeanSe(summarize(*reported.original));
-  const auto paired = comparePaired(*reported.returned, *reported.original);
+  const std::string seeds = reported.confirmed ? "the confirmation seeds" : "the validation seeds";
   if (set.isOriginal()) {
     const bool confirmationFailed = state.confirmation.done() && !state.confirmation.key.empty();
     file.meta["verdict"] =
@@ -315,16 +330,14 @@ expr::FeaturesFile returnedFeaturesFile(const ValidationState& state, const expr
                   "seeds (difference {:.4g}); these are the original variables",
                   comparePaired(state.confirmation.winner, state.confirmation.original)
                       .meanDifference)
-            : "no discovered feature set beat the original variables on validation; these are "
-              "the original variables";
+            : "no discovered feature set beat the original variables on the validation seeds; "
+              "these are the original variables";
     return file;
   }
-  file.meta["fitness"] = fmt::format("{}", set.gpFitness);
+  file.meta["gp_fitness"] = fmt::format("{}", set.gpFitness);
   file.meta["gp_trials"] = std::to_string(set.gpTrials);
-  file.meta["verdict"] =
-      fmt::format("beats the original variables on {} by {:.4g} (paired t-test p = {:.3g}{})",
-                  reported.confirmed ? "the confirmation seeds" : "validation",
-                  paired.meanDifference, paired.p, paired.p < 0.05 ? "" : ", not significant");
+  file.meta["verdict"] = comparisonVerdict(comparePaired(*reported.returned, *reported.original),
+                                           "the original variables", seeds);
   if (config.normalise) file.meta["normalised"] = "each feature scaled on sampled states";
   return file;
 }

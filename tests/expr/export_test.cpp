@@ -180,5 +180,21 @@ TEST(Export, NumPyFunctionComputesTheSameValues) {
   expectSameLines(out, want, c);
 }
 
+// LaTeX, like infix, never writes "- -c" or "\cdot -c": a negative constant after an operator's
+// symbol is parenthesised; elsewhere (first, or an argument) it is not.
+TEST(Export, LatexParenthesisesNegativeConstantsAfterAnOperator) {
+  Genome g;
+  g.addFeature(parseInfix("th1 - -0.139", kNames));
+  g.addFeature(parseInfix("-2 * th2 + -0.5 * dth1", kNames));
+  g.addFeature(parseInfix("th1 * -3 / -0", kNames));
+  EXPECT_EQ(exportLatex(g, kNames),
+            "\\begin{align*}\n"
+            "  \\phi_{1}(s) &= \\mathit{th}_{1} - \\left(-0.139\\right) \\\\\n"
+            "  \\phi_{2}(s) &= -2 \\cdot \\mathit{th}_{2} + \\left(-0.5\\right) \\cdot "
+            "\\mathit{dth}_{1} \\\\\n"
+            "  \\phi_{3}(s) &= \\frac{\\mathit{th}_{1} \\cdot \\left(-3\\right)}{-0}\n"
+            "\\end{align*}\n");
+}
+
 }  // namespace
 }  // namespace gpfd::expr

@@ -1,6 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <chrono>
+#include <cstdint>
+#include <utility>
+#include <vector>
 
 #include "gpfd/expr/parse.hpp"
 #include "gpfd/expr/print.hpp"
@@ -18,9 +22,46 @@ TEST(Print, InfixUsesMinimalParentheses) {
   EXPECT_EQ(toInfix(parseInfix("(th1 - th2) - dth1", kNames), kNames), "th1 - th2 - dth1");
   EXPECT_EQ(toInfix(parseInfix("th1 - (th2 - dth1)", kNames), kNames), "th1 - (th2 - dth1)");
   EXPECT_EQ(toInfix(parseInfix("th1 / (th2 * 2)", kNames), kNames), "th1 / (th2 * 2)");
-  EXPECT_EQ(toInfix(parseInfix("sin(th1 + 1) * -0.5", kNames), kNames), "sin(th1 + 1) * -0.5");
+  EXPECT_EQ(toInfix(parseInfix("sin(th1 + 1) * -0.5", kNames), kNames), "sin(th1 + 1) * (-0.5)");
   EXPECT_EQ(toInfix(parseInfix("-th1", kNames), kNames), "neg(th1)");
   EXPECT_EQ(toInfix(parseInfix("absdiff(x[0], x[3])", kNames), kNames), "absdiff(th1, dth2)");
+}
+
+// The bit patterns of a tree's constants, in prefix order.
+std::vector<std::uint64_t> constantBits(const Tree& tree) {
+  std::vector<std::uint64_t> bits;
+  for (const Node& n : tree) {
+    if (n.op == Op::Const) bits.push_back(std::bit_cast<std::uint64_t>(n.value));
+  }
+  return bits;
+}
+
+// A negative constant right after an operator's symbol reads "x - (-0.139)", never "x - -0.139",
+// and parses back to the same tree with bit-identical constants (-0 included).
+TEST(Print, NegativeConstantsAfterAnOperatorAreParenthesised) {
+  const auto c = [](double v) { return Node::constant(v); };
+  const Node th1 = Node::variable(0), th2 = Node::variable(1);
+  const auto node = [](Op op) { return Node::function(op); };
+  const std::vector<std::pair<Tree, std::string>> cases{
+      {{node(Op::Sub), th1, c(-0.139)}, "th1 - (-0.139)"},
+      {{node(Op::Add), th1, c(-1e-300)}, "th1 + (-1e-300)"},
+      {{node(Op::Mul), th1, c(-2.5)}, "th1 * (-2.5)"},
+      {{node(Op::Div), th1, c(-0.0)}, "th1 / (-0)"},
+      // The leftmost operand of a right operand follows the operator too.
+      {{node(Op::Add), th1, node(Op::Mul), c(-2), th2}, "th1 + (-2) * th2"},
+      // Where nothing precedes it, or a parenthesis or comma does, no parentheses are needed.
+      {{node(Op::Mul), c(-2), th2}, "-2 * th2"},
+      {{node(Op::Sub), th1, node(Op::Sub), c(-3), th2}, "th1 - (-3 - th2)"},
+      {{node(Op::Max), c(-1.5), c(-0.25)}, "max(-1.5, -0.25)"},
+      {{node(Op::Neg), c(-4)}, "neg(-4)"},
+  };
+  for (auto [tree, text] : cases) {
+    recomputeLengths(tree);
+    EXPECT_EQ(toInfix(tree, kNames), text);
+    const Tree back = parseInfix(text, kNames);
+    EXPECT_EQ(back, tree) << text;
+    EXPECT_EQ(constantBits(back), constantBits(tree)) << text;
+  }
 }
 
 TEST(Print, Sexpr) {
@@ -82,6 +123,25 @@ TEST(Parse, MalformedInputNamesTheErrorAndPlace) {
   expectError("(+ th1 x[7])", "out of range", 8, true);
   expectError("(+ th1", "expected ')'", 7, true);
   expectError("", "empty", 1, true);
+}
+
+// The limits docs/expressions.md states: a tree 64 levels deep, infix text nested 128 levels
+// (parentheses that add no node count there, not in the tree).
+TEST(Parse, TheDocumentedDepthAndNestingLimits) {
+  ASSERT_EQ(kMaxParseDepth, 64);
+  const auto nested = [](int calls) {
+    std::string text = "th1";
+    for (int i = 0; i < calls; ++i) text = "sin(" + text + ")";
+    return text;
+  };
+  EXPECT_EQ(parseInfix(nested(63), kNames).size(), 64u);  // Depth 64.
+  expectError(nested(64), "too deep: depth exceeds the limit of 64", 1);
+  const auto parenthesised = [](int levels) {
+    return std::string(static_cast<std::size_t>(levels), '(') + "th1" +
+           std::string(static_cast<std::size_t>(levels), ')');
+  };
+  EXPECT_EQ(parseInfix(parenthesised(127), kNames).size(), 1u);
+  expectError(parenthesised(128), "too deep: nesting exceeds the limit of 128", 129);
 }
 
 // "x op x op ... op x" with `terms` terms.

@@ -40,7 +40,7 @@ TEST(Evolve, WritesTheResultsDirectory) {
             "cache_hits,seconds");
   const auto best = readText(dir + "/best.features");
   EXPECT_NE(best.find("# env: cartpole"), std::string::npos);
-  EXPECT_NE(best.find("# validated: "), std::string::npos);
+  EXPECT_NE(best.find("# confirmed: "), std::string::npos);
   EXPECT_NE(best.find("(30 trials)"), std::string::npos);
   EXPECT_NE(best.find("# verdict: "), std::string::npos);
   // Hall of fame (10) and the original variables, each on its own line.
@@ -50,7 +50,7 @@ TEST(Evolve, WritesTheResultsDirectory) {
   // The complexity front, and the run directory as a stand-in for its best.features.
   const auto front = runGpfd("features show " + dir + " --front");
   EXPECT_EQ(front.status, 0) << front.output;
-  EXPECT_NE(front.output.find("validated (mean +- SE)"), std::string::npos);
+  EXPECT_NE(front.output.find("selection (mean +- SE)"), std::string::npos);
   const auto frontCsv = readText(dir + "/front.csv");
   EXPECT_EQ(std::count(front.output.begin(), front.output.end(), '\n'),
             std::count(frontCsv.begin(), frontCsv.end(), '\n'));
@@ -258,8 +258,8 @@ TEST(Evolve, TheValidatedScoreHoldsOnFreshSeeds) {
             0);
   const auto config = run::loadExperimentConfig(dir + "/config.toml");
   const auto file = expr::readFeaturesFile(dir + "/best.features");
-  EXPECT_EQ(file.meta.at("validated_by").rfind("confirmation on 30 fresh seeds", 0), 0u);
-  const auto validated = file.meta.at("validated");  // "MEAN +- SE (M trials)"
+  EXPECT_EQ(file.meta.at("confirmed_by").rfind("30 fresh seeds", 0), 0u);
+  const auto validated = file.meta.at("confirmed");  // "MEAN +- SE (M trials)"
   const double mean = std::stod(validated);
   const double se = std::stod(validated.substr(validated.find("+-") + 2));
   const run::Validator remeasure(config, 2, run::LearningTask::Budget::Confirmation, 30,

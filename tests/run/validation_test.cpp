@@ -72,6 +72,12 @@ TEST(Validation, TablesListEverySetAndTheFront) {
   EXPECT_EQ(std::count(front.begin(), front.end(), '\n'), 3);
   EXPECT_NE(front.find("\"x\""), std::string::npos);
   EXPECT_NE(front.find("\"sin(th) * dth\""), std::string::npos);
+  // Its scores are the selection's (the validation means), and its header says so.
+  EXPECT_EQ(front.substr(0, front.find('\n')),
+            "size,features,selection,selection_se,seeds,p_vs_original,set,expressions");
+  const auto table = formatFrontTable(sets, kNames);
+  EXPECT_NE(table.substr(0, table.find('\n')).find("selection (mean +- SE)"), std::string::npos)
+      << table;
 }
 
 TEST(Validation, ConfirmationDecidesAndIsWhatIsReported) {
@@ -113,6 +119,49 @@ TEST(Validation, TheReturnedFileLeavesPlaceholdersOut) {
   const auto file = returnedFeaturesFile(state, task.prepared(state.sets[1].genome), task);
   ASSERT_EQ(file.genome.featureCount(), 1u);
   EXPECT_EQ(expr::toInfix(file.genome.feature(0), kNames), "sin(th)");
+}
+
+// best.features names each score by what it is: `selection` (validation means, biased for the
+// winner), `confirmed` (fresh seeds, unbiased), `gp_fitness` (the GP's own), never `validated`;
+// its verdict claims a difference only where the paired t-test finds one.
+TEST(Validation, TheReturnedFileNamesEachScoreByWhatItIs) {
+  auto config = loadExperimentConfig(std::string(GPFD_SOURCE_DIR) + "/configs/cartpole-quick.toml");
+  config.normalise = false;
+  const LearningTask task(config, LearningTask::Budget::Validation);
+  ValidationState state;
+  state.sets = {set("", {1, 2, 3}), set("sin(th)", {3, 3, 3.5})};
+  state.sets[1].gpFitness = 7.5;
+  state.sets[1].gpTrials = 5;
+
+  // Not confirmed: the selection score stands, and +1.167 at p = 0.118 is no difference.
+  auto file = returnedFeaturesFile(state, state.sets[1].genome, task);
+  EXPECT_EQ(file.meta.count("validated"), 0u);
+  EXPECT_EQ(file.meta.count("validated_by"), 0u);
+  EXPECT_EQ(file.meta.count("fitness"), 0u);
+  EXPECT_EQ(file.meta.count("confirmed"), 0u);
+  EXPECT_EQ(file.meta.at("selection"), "3.16667 +- 0.167 (3 trials)");
+  EXPECT_EQ(file.meta.at("selection_by").rfind("3 validation seeds", 0), 0u);
+  EXPECT_EQ(file.meta.at("original"), "2 +- 0.577 (3 trials)");
+  EXPECT_EQ(file.meta.at("gp_fitness"), "7.5");
+  EXPECT_EQ(file.meta.at("verdict"),
+            "not significantly different from the original variables on the validation seeds "
+            "(difference 1.167, paired t-test p = 0.118)");
+
+  // Confirmed: the confirmation's scores stand beside the selection's; +5 at p < 0.001.
+  state.confirmation = {state.sets[1].key, {10, 12, 11, 14, 13}, {5, 6, 7, 8, 9}};
+  file = returnedFeaturesFile(state, state.sets[1].genome, task);
+  EXPECT_EQ(file.meta.at("confirmed"), "12 +- 0.707 (5 trials)");
+  EXPECT_EQ(file.meta.at("confirmed_by").rfind("5 fresh seeds", 0), 0u);
+  EXPECT_EQ(file.meta.at("selection"), "3.16667 +- 0.167 (3 trials)");
+  EXPECT_EQ(file.meta.at("original"), "7 +- 0.707 (5 trials)");
+  EXPECT_EQ(file.meta.at("verdict").rfind("better than the original variables on the "
+                                          "confirmation seeds by 5 (paired t-test p = 0.000",
+                                          0),
+            0u)
+      << file.meta.at("verdict");
+
+  EXPECT_EQ(comparisonVerdict({10, -2.5, 0.5, 0.01}, "B", "the seeds"),
+            "worse than B on the seeds by 2.5 (paired t-test p = 0.01)");
 }
 
 TEST(MethodVerdict, CountsRunsAndReadsBack) {

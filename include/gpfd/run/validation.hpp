@@ -139,18 +139,28 @@ std::string formatConfirmationCsv(const ValidationState& state,
 // The complexity front: indices of the best validated set at each size, smallest first; a set
 // is on it only where its mean beats every smaller set's.
 std::vector<std::size_t> frontIndices(const std::vector<ValidatedSet>& sets, std::size_t stateDim);
-// front.csv: the front's sets with their scores and expressions.
+// front.csv: the front's sets with their selection scores (validation means) and expressions.
 std::string formatFrontCsv(const std::vector<ValidatedSet>& sets,
                            const std::vector<std::string>& stateNames);
-// The front as a text table for the terminal.
+// The front as a text table for the terminal (scores: selection, as in front.csv).
 std::string formatFrontTable(const std::vector<ValidatedSet>& sets,
                              const std::vector<std::string>& stateNames);
 
 // The features file of what the run returns (`prepared`: its genome as the learner sees it,
-// LearningTask::prepared), with `# validated` (the reported score), `# validated_by`,
-// `# selection` (the validation score that chose it), `# original` and `# verdict` lines.
+// LearningTask::prepared). Its scores, in one vocabulary: `# confirmed` (the score on the fresh
+// confirmation seeds, unbiased; only when the choice was confirmed) with `# confirmed_by`,
+// `# selection` (the mean over the validation seeds that chose among the candidates, biased
+// upwards for the winner) with `# selection_by`, `# original` (the original variables on the
+// seeds of the reported score: confirmation's, else validation's), `# gp_fitness` (the GP's own
+// estimate, biased; a discovered set only) and `# verdict`.
 expr::FeaturesFile returnedFeaturesFile(const ValidationState& state, const expr::Genome& prepared,
                                         const LearningTask& task);
+
+// A comparison in words as its significance allows: "better|worse than OTHER on SEEDS by D
+// (paired t-test p = P)" where p < 0.05, else "not significantly different from OTHER on SEEDS
+// (difference D, paired t-test p = P)".
+std::string comparisonVerdict(const PairedComparison& paired, const std::string& other,
+                              const std::string& seeds);
 
 // "MEAN +- SE (M trials)".
 std::string formatMeanSe(const Summary& summary);
