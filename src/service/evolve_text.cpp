@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "gpfd/run/validation.hpp"
+
 namespace gpfd::service {
 namespace {
 
@@ -116,11 +118,14 @@ void EvolveText::runFinished(const run::RunOutcome& o, const std::string& dir,
                     label, o.confirmed ? "validation and confirmation" : "validation",
                     meanSe(o.original), dir));
   } else {
+    // The score's name as best.features gives it: confirmed (unbiased) or selection (biased).
     o_.out(fmt::format(
-        "{}{}: {} vs original {} on {} paired fresh trials (difference {:.4g}, p = {:.3g}); "
-        "features in {}/best.features\n",
-        label, o.confirmed ? "confirmed" : "validated", meanSe(o.winner), meanSe(o.original),
-        o.winner.n, o.vsOriginal.meanDifference, o.vsOriginal.p, dir));
+        "{}{}: {} vs original {} on {} paired fresh trials: {}; features in {}/best.features\n",
+        label, o.confirmed ? "confirmed" : "selection", meanSe(o.winner), meanSe(o.original),
+        o.winner.n,
+        run::comparisonVerdict(o.vsOriginal, "the original variables",
+                               o.confirmed ? "the confirmation seeds" : "the validation seeds"),
+        dir));
   }
 }
 
