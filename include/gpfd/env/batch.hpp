@@ -10,7 +10,9 @@
 // step count and action: both run the same dynamics templates (cartpole_dynamics.hpp, ...), on
 // eight lanes at a time with AVX-512 or four with AVX2 where the CPU has them (util/cpu.hpp), one
 // lane at a time otherwise. tests/env/test_batch.cpp checks it on random states and actions, every
-// way.
+// way. An environment declares its batched form in its registry entry (EnvInfo::batch), so a
+// plug-in's can have one; makeLaneByLaneBatch steps copies of any environment instead
+// (tests/env/test_batch_forms.cpp).
 #pragma once
 
 #include <cstddef>
@@ -88,10 +90,7 @@ class BatchEnvironment {
   // The episode of lane `from` moves to lane `to` (the caller has moved its rows of the buffers);
   // the episode that lane `to` held is dropped. Nothing to do for a form whose lanes live wholly
   // in the buffers (the default).
-  virtual void moveLane(std::size_t from, std::size_t to) {
-    static_cast<void>(from);
-    static_cast<void>(to);
-  }
+  virtual void moveLane(std::size_t /*from*/, std::size_t /*to*/) {}
 
  protected:
   // `isa` must be resolved (Avx512, Avx2 or Scalar).
@@ -112,6 +111,12 @@ std::unique_ptr<BatchEnvironment> makeBatchEnvironment(const Environment& env,
                                                        BatchIsa isa = BatchIsa::Auto);
 // Whether makeBatchEnvironment(env) gives a batched form; cheap (nothing is made).
 bool hasBatchEnvironment(const Environment& env);
+// The same by registry name and parameters (Python's vector environment); InputError when the
+// environment has no batched form.
+std::unique_ptr<BatchEnvironment> makeBatchEnvironment(const std::string& name,
+                                                       const Params& params,
+                                                       BatchIsa isa = BatchIsa::Auto);
+
 // Any environment as a batch, lane by lane: lane l steps its own fresh copy of `env`
 // (Environment::freshCopy) through step(), one lane after another; nullptr when `env` cannot be
 // copied. Each lane's copy keeps its state: the `state` rows are written (after reset and step)
@@ -121,10 +126,5 @@ bool hasBatchEnvironment(const Environment& env);
 // what they may use (usesAvx2); the copies step one at a time whatever it is.
 std::unique_ptr<BatchEnvironment> makeLaneByLaneBatch(const Environment& env,
                                                       BatchIsa isa = BatchIsa::Auto);
-// The same by registry name and parameters (Python's vector environment); InputError when the
-// environment has no batched form.
-std::unique_ptr<BatchEnvironment> makeBatchEnvironment(const std::string& name,
-                                                       const Params& params,
-                                                       BatchIsa isa = BatchIsa::Auto);
 
 }  // namespace gpfd::env
