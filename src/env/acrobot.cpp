@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "acrobot_dynamics.hpp"
+#include "batch_factories.hpp"
 #include "gpfd/env/angles.hpp"
 #include "gpfd/env/common_params.hpp"
 #include "gpfd/util/error.hpp"
@@ -42,11 +43,14 @@ const ParamTable<AcrobotConfig>& AcrobotConfig::table() {
 }
 
 EnvInfo Acrobot::info() {
-  return {"acrobot",
-          "two-link underactuated pendulum; swing the tip above the bar (Sutton & Barto; "
-          "Gymnasium Acrobot-v1)",
-          AcrobotConfig::table().specs(),
-          [](const Params& p) { return std::make_unique<Acrobot>(AcrobotConfig::fromParams(p)); }};
+  EnvInfo info{"acrobot",
+               "two-link underactuated pendulum; swing the tip above the bar (Sutton & Barto; "
+               "Gymnasium Acrobot-v1)",
+               AcrobotConfig::table().specs(), [](const Params& p) {
+                 return std::make_unique<Acrobot>(AcrobotConfig::fromParams(p));
+               }};
+  info.batch = batch::formOf(&batch::makeAcrobot);
+  return info;
 }
 
 Acrobot::Acrobot(AcrobotConfig config) : config_(config) {}

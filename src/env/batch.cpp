@@ -8,9 +8,10 @@
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::env {
-namespace {
 
-BatchIsa resolve(BatchIsa isa) {
+namespace batch {
+
+BatchIsa resolveIsa(BatchIsa isa) {
   if (isa == BatchIsa::Avx512 && !cpuHasAvx512()) {
     throw std::invalid_argument("batched environment: AVX-512 asked for but not available");
   }
@@ -21,27 +22,16 @@ BatchIsa resolve(BatchIsa isa) {
   return cpuHasAvx512() ? BatchIsa::Avx512 : cpuHasAvx2() ? BatchIsa::Avx2 : BatchIsa::Scalar;
 }
 
-using Maker = std::unique_ptr<BatchEnvironment> (*)(const Environment&, BatchIsa);
+}  // namespace batch
 
-// The maker of env's batched form, or nullptr when it has none.
-Maker makerOf(const Environment& env) {
-  if (dynamic_cast<const CartPole*>(&env) != nullptr) {
-    return [](const Environment& e, BatchIsa isa) {
-      return batch::makeCartPole(static_cast<const CartPole&>(e), isa);
-    };
-  }
-  if (dynamic_cast<const Acrobot*>(&env) != nullptr) {
-    return [](const Environment& e, BatchIsa isa) {
-      return batch::makeAcrobot(static_cast<const Acrobot&>(e), isa);
-    };
-  }
-  const auto* swimmer = dynamic_cast<const Swimmer*>(&env);
-  if (swimmer != nullptr && swimmer->fixedSizeBody() != nullptr) {
-    return [](const Environment& e, BatchIsa isa) {
-      return batch::makeSwimmer(static_cast<const Swimmer&>(e), isa);
-    };
-  }
-  return nullptr;
+namespace {
+
+// The batched form that env's registry entry declares, if env has it; else nullptr.
+const BatchForm* formOf(const Environment& env) {
+  const EnvInfo* entry = Registry::global().find(env.name());
+  if (entry == nullptr || !entry->batch.make) return nullptr;
+  if (entry->batch.available && !entry->batch.available(env)) return nullptr;
+  return &entry->batch;
 }
 
 }  // namespace
@@ -70,11 +60,11 @@ void BatchEnvironment::reset(Rng& rng, const BatchBuffers& io, std::size_t lane)
   io.elapsed[lane] = 0;
 }
 
-bool hasBatchEnvironment(const Environment& env) { return makerOf(env) != nullptr; }
+bool hasBatchEnvironment(const Environment& env) { return formOf(env) != nullptr; }
 
 std::unique_ptr<BatchEnvironment> makeBatchEnvironment(const Environment& env, BatchIsa isa) {
-  const Maker maker = makerOf(env);
-  return maker != nullptr ? maker(env, resolve(isa)) : nullptr;
+  const BatchForm* form = formOf(env);
+  return form != nullptr ? form->make(env, batch::resolveIsa(isa)) : nullptr;
 }
 
 std::unique_ptr<BatchEnvironment> makeBatchEnvironment(const std::string& name,

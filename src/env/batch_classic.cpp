@@ -1,28 +1,11 @@
 // env: batched cart-pole and Acrobot.
-#include <fmt/format.h>
-
-#include <string>
-
 #include "acrobot_dynamics.hpp"
 #include "batch_driver.hpp"
 #include "batch_factories.hpp"
 #include "cartpole_dynamics.hpp"
-#include "gpfd/util/error.hpp"
 
 namespace gpfd::env::batch {
 namespace {
-
-// Throws InputError unless every lane's discrete action is an integer in [0, choices).
-void checkChoices(const BatchBuffers& io, int choices, const std::string& env) {
-  for (std::size_t l = 0; l < io.lanes; ++l) {
-    const double a = io.action[l];
-    if (!(a >= 0.0 && a < choices && a == static_cast<int>(a))) {
-      throw InputError(fmt::format("{} discrete action must be 0..{}, got {} in lane {}", env,
-                                   choices - 1, a, l),
-                       fmt::format("{} action", env));
-    }
-  }
-}
 
 struct CartPoleKernel {
   CartPoleConfig config;

@@ -8,15 +8,32 @@
 //   const std::array<T, A>& action, T& reward) const, returning `terminated`.
 #pragma once
 
+#include <fmt/format.h>
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <type_traits>
 
 #include "gpfd/env/batch.hpp"
+#include "gpfd/util/error.hpp"
 #include "gpfd/util/lanes.hpp"
 
 namespace gpfd::env::batch {
+
+// Throws InputError unless every lane's discrete action (one component) is an integer in
+// [0, choices).
+inline void checkChoices(const BatchBuffers& io, int choices, const std::string& env) {
+  for (std::size_t l = 0; l < io.lanes; ++l) {
+    const double a = io.action[l];
+    if (!(a >= 0.0 && a < choices && a == static_cast<int>(a))) {
+      throw InputError(fmt::format("{} discrete action must be 0..{}, got {} in lane {}", env,
+                                   choices - 1, a, l),
+                       fmt::format("{} action", env));
+    }
+  }
+}
 
 // One group of lanes at `lane` of buffers whose rows are `stride` apart.
 template <std::size_t S, std::size_t A, class T, class Kernel>

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "batch_factories.hpp"
 #include "cartpole_dynamics.hpp"
 #include "gpfd/env/common_params.hpp"
 #include "gpfd/util/error.hpp"
@@ -36,10 +37,12 @@ const ParamTable<CartPoleConfig>& CartPoleConfig::table() {
 }
 
 EnvInfo CartPole::info() {
-  return {"cartpole", "pole balancing on a cart (Barto et al. 1983; Gymnasium CartPole-v1)",
-          CartPoleConfig::table().specs(), [](const Params& p) {
-            return std::make_unique<CartPole>(CartPoleConfig::fromParams(p));
-          }};
+  EnvInfo info{"cartpole", "pole balancing on a cart (Barto et al. 1983; Gymnasium CartPole-v1)",
+               CartPoleConfig::table().specs(), [](const Params& p) {
+                 return std::make_unique<CartPole>(CartPoleConfig::fromParams(p));
+               }};
+  info.batch = batch::formOf(&batch::makeCartPole);
+  return info;
 }
 
 CartPole::CartPole(CartPoleConfig config) : config_(config) {}

@@ -1,5 +1,7 @@
 #include <fmt/format.h>
 
+#include <typeinfo>
+
 #include "gpfd/env/acrobot.hpp"
 #include "gpfd/env/cartpole.hpp"
 #include "gpfd/env/environment.hpp"
@@ -24,6 +26,10 @@ Registry& Registry::global() { return instance<Registry>(addBuiltIns); }
 
 void Registry::add(EnvInfo info) {
   if (!info.make) throw InputError("an environment needs a factory", "environment registry");
+  if (info.batch.available && !info.batch.make) {
+    throw InputError(fmt::format("environment '{}': a batched form needs its maker", info.name),
+                     "environment registry");
+  }
   NamedRegistry::add(std::move(info));
 }
 
@@ -31,6 +37,18 @@ std::unique_ptr<Environment> Registry::make(const std::string& name, const Param
   const EnvInfo& entry = info(name);
   checkParamNames(name, paramNames(entry.params), params);
   return entry.make(params);
+}
+
+std::unique_ptr<Environment> Environment::freshCopy() const {
+  if (Registry::global().find(name()) == nullptr) return nullptr;
+  std::unique_ptr<Environment> copy;
+  try {
+    copy = Registry::global().make(name(), params());
+  } catch (const InputError&) {
+    return nullptr;  // Another environment's parameters under a registered name.
+  }
+  const Environment& made = *copy;
+  return typeid(made) == typeid(*this) ? std::move(copy) : nullptr;
 }
 
 void Environment::sampleAction(Rng& rng, std::span<double> action) const {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "batch_factories.hpp"
 #include "gpfd/env/angles.hpp"
 #include "gpfd/env/common_params.hpp"
 #include "gpfd/expr/trig.hpp"
@@ -51,9 +52,19 @@ const ParamTable<SwimmerConfig>& SwimmerConfig::table() {
 }
 
 EnvInfo Swimmer::info() {
-  return {"swimmer", "n-segment swimmer in a viscous fluid; swim along x (Coulom 2002, appendix B)",
-          SwimmerConfig::table().specs(),
-          [](const Params& p) { return std::make_unique<Swimmer>(SwimmerConfig::fromParams(p)); }};
+  EnvInfo info{
+      "swimmer", "n-segment swimmer in a viscous fluid; swim along x (Coulom 2002, appendix B)",
+      SwimmerConfig::table().specs(),
+      [](const Params& p) { return std::make_unique<Swimmer>(SwimmerConfig::fromParams(p)); }};
+  info.batch = batch::formOf(&batch::makeSwimmer,
+                             [](const Swimmer& s) { return s.fixedSizeBody() != nullptr; });
+  return info;
+}
+
+std::unique_ptr<Environment> Swimmer::freshCopy() const {
+  auto copy = std::make_unique<Swimmer>(config_);
+  copy->setReferenceSolver(referenceSolver_);
+  return copy;
 }
 
 Swimmer::Swimmer(SwimmerConfig config) : config_(config), n_(config.segments) {

@@ -219,6 +219,7 @@ class LockstepPlayer final : public Player {
       }
     }
     if (from == to) return;
+    batch_->moveLane(from, to);
     for (std::size_t i = 0; i < stateDim_; ++i)
       store_.state[i * stride_ + to] = store_.state[i * stride_ + from];
     store_.elapsed[to] = store_.elapsed[from];
@@ -277,6 +278,7 @@ class LockstepPlayer final : public Player {
 
 std::unique_ptr<Player> makeLockstepPlayer(const Setup& setup, std::size_t capacity) {
   auto batch = env::makeBatchEnvironment(*setup.env);
+  if (!batch) batch = env::makeLaneByLaneBatch(*setup.env);
   if (!batch) return nullptr;
   return std::make_unique<LockstepPlayer>(setup, std::move(batch), capacity);
 }

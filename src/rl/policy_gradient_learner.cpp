@@ -90,15 +90,15 @@ class PolicyGradientLearner final : public Learner {
     return trainPolicyGradient(env, map, config, rng);
   }
 
-  // With lockstep on an environment that has a batched form, the runs' episodes of each update
-  // are played side by side (trainPolicyGradientRuns on one environment, whose reset() alone
-  // sets up an episode); otherwise one run after another, each on its own environment (the
-  // reference, and what any other environment, e.g. a plug-in's, was promised).
+  // With lockstep, the runs' episodes of each update are played side by side
+  // (trainPolicyGradientRuns) through the environment's batched form, or lane by lane through
+  // copies of it (Environment::freshCopy) where it has none; otherwise, and for an environment
+  // that cannot be copied, one run after another, each on its own environment (the reference).
   std::vector<LearningCurve> trainRuns(const EnvironmentMaker& makeEnv,
                                        const features::FeatureMap& map, std::span<Rng> rngs,
                                        const RunPointCallback& onPoint) const override {
     const auto env = makeEnv();
-    if (!config_.lockstep || !env::hasBatchEnvironment(*env)) {
+    if (!config_.lockstep || !(env::hasBatchEnvironment(*env) || env->freshCopy())) {
       return Learner::trainRuns(makeEnv, map, rngs, onPoint);
     }
     PolicyGradientConfig config = config_;

@@ -1,14 +1,18 @@
 // Policy gradient with the episodes of an update played in lockstep (through the batched
 // environments) gives the same curves, weights, evaluations and gradient estimates, bit for bit,
 // as the sequential reference: on every batched environment, with compiled and raw features,
-// Gaussian and softmax policies, normalisation, a learned std, caps and a run that diverges.
+// Gaussian and softmax policies, normalisation, a learned std, caps and a run that diverges; and
+// on environments without a batched form, whose copies the lockstep player steps lane by lane.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <memory>
 #include <string>
 
+#include "gpfd/env/batch.hpp"
+#include "gpfd/env/cartpole.hpp"
 #include "gpfd/env/environment.hpp"
 #include "gpfd/expr/features_file.hpp"
 #include "gpfd/jit/compiled_feature_map.hpp"
@@ -22,6 +26,38 @@ namespace {
 using testing::expectSameCurves;
 using testing::sameBits;
 
+// Cart-pole under another name, without a batched form (so the lockstep player steps copies of
+// it lane by lane), counting the instances made.
+class CountedCartPole final : public env::Environment {
+ public:
+  explicit CountedCartPole(env::CartPoleConfig config) : inner_(config) { ++made; }
+  std::string name() const override { return "counted-cartpole"; }
+  env::Params params() const override { return inner_.params(); }
+  const std::vector<std::string>& stateNames() const override { return inner_.stateNames(); }
+  env::ActionSpace actionSpace() const override { return inner_.actionSpace(); }
+  void reset(Rng& rng) override { inner_.reset(rng); }
+  std::span<const double> state() const override { return inner_.state(); }
+  void setState(std::span<const double> state) override { inner_.setState(state); }
+  env::StepResult step(std::span<const double> action) override { return inner_.step(action); }
+
+  static inline std::atomic<int> made{0};
+
+ private:
+  env::CartPole inner_;
+};
+
+void registerCountedCartPole() {
+  static const bool done = [] {
+    env::Registry::global().add({"counted-cartpole", "cart-pole without a batched form (test)",
+                                 env::CartPoleConfig::table().specs(), [](const Params& p) {
+                                   return std::make_unique<CountedCartPole>(
+                                       env::CartPoleConfig::fromParams(p));
+                                 }});
+    return true;
+  }();
+  static_cast<void>(done);
+}
+
 struct Setting {
   std::string name;
   std::string env;
@@ -31,6 +67,7 @@ struct Setting {
 };
 
 std::vector<Setting> settings() {
+  registerCountedCartPole();
   return {
       {"cartpole raw", "cartpole", {{"max_steps", "200"}}, "", {}},
       {"cartpole compiled",
@@ -63,6 +100,22 @@ std::vector<Setting> settings() {
        {{"segments", "5"}, {"horizon", "30"}},
        "sin(th1)\nth5\ndth2\ndGx\n",
        {{"normalise", "true"}, {"max_episode_steps", "25"}}},
+      // Lane by lane (no batched form):
+      {"counted cartpole compiled",
+       "counted-cartpole",
+       {{"max_steps", "200"}},
+       "sin(th)\ndth * cos(th)\nx + dx\n",
+       {}},
+      {"counted cartpole softmax normalised",
+       "counted-cartpole",
+       {{"actions", "discrete"}, {"max_steps", "150"}},
+       "",
+       {{"normalise", "true"}}},
+      {"swimmer9 learned std",
+       "swimmer",
+       {{"segments", "9"}, {"horizon", "30"}},
+       "",
+       {{"learn_std", "true"}}},
   };
 }
 
@@ -202,6 +255,27 @@ TEST(Lockstep, ADivergingRunStopsAtTheSameEpisodeAndStep) {
   }
 }
 
+// Without a batched form, lockstep steps copies of the environment (one per lane): the copies are
+// made, and the curves are the sequential ones (the tests above).
+TEST(Lockstep, WithoutABatchedFormTheLanesStepCopies) {
+  registerCountedCartPole();
+  const auto environment = env::Registry::global().make("counted-cartpole", {});
+  ASSERT_FALSE(env::hasBatchEnvironment(*environment));
+  const features::RawFeatureMap map(4);
+  PolicyGradientConfig c;
+  c.updates = 2;
+  c.lockstep = false;
+  int before = CountedCartPole::made;
+  Rng a(1);
+  trainPolicyGradient(*environment, map, c, a);
+  EXPECT_EQ(CountedCartPole::made, before);
+  c.lockstep = true;
+  before = CountedCartPole::made;
+  Rng b(1);
+  trainPolicyGradient(*environment, map, c, b);
+  EXPECT_EQ(CountedCartPole::made - before, 1 + c.episodesPerUpdate);  // Prototype and lanes.
+}
+
 // GP fitness goes through the same learner: equal trial fitness both ways.
 TEST(Lockstep, TrialFitnessIsTheSameBothWays) {
   run::ExperimentConfig experiment;
@@ -219,6 +293,35 @@ TEST(Lockstep, TrialFitnessIsTheSameBothWays) {
   Rng a(21), b(21);
   const double x = run::trialFitness(lockstep, genome, a);
   const double y = run::trialFitness(sequential, genome, b);
+  EXPECT_TRUE(std::isfinite(x));
+  EXPECT_TRUE(sameBits(x, y)) << x << " vs " << y;
+}
+
+// The trials of a fitness evaluation on an environment without a batched form are played
+// together lane by lane (Learner::trainRuns of pg), with the fitness of one after another.
+TEST(Lockstep, TrialFitnessWithoutABatchedFormIsTheSameBothWays) {
+  registerCountedCartPole();
+  run::ExperimentConfig experiment;
+  experiment.env = "counted-cartpole";
+  experiment.envParams = {{"max_steps", "150"}};
+  experiment.learner = "pg";
+  experiment.trials = 3;
+  experiment.learnerParams = {{"updates", "4"}};
+  const auto genome = expr::parseFeaturesFile("sin(th)\ndth + dx\n", "test",
+                                              {"x", "dx", "th", "dth"}, "counted-cartpole")
+                          .genome;
+  const run::LearningTask lockstep(experiment, run::LearningTask::Budget::Trial);
+  experiment.learnerParams["lockstep"] = "false";
+  const run::LearningTask sequential(experiment, run::LearningTask::Budget::Trial);
+  Rng a(21), b(21);
+  int before = CountedCartPole::made;
+  const double x = run::trialFitness(lockstep, genome, a);
+  // One environment made for the call, a copy showing that it can be copied, the batch's
+  // prototype and one copy per lane (3 trials x 10 episodes).
+  EXPECT_EQ(CountedCartPole::made - before, 3 + 3 * 10);
+  before = CountedCartPole::made;
+  const double y = run::trialFitness(sequential, genome, b);
+  EXPECT_EQ(CountedCartPole::made - before, 1 + 3);  // The call's, then one per trial.
   EXPECT_TRUE(std::isfinite(x));
   EXPECT_TRUE(sameBits(x, y)) << x << " vs " << y;
 }

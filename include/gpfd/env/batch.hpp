@@ -10,7 +10,9 @@
 // step count and action: both run the same dynamics templates (cartpole_dynamics.hpp, ...), on
 // eight lanes at a time with AVX-512 or four with AVX2 where the CPU has them (util/cpu.hpp), one
 // lane at a time otherwise. tests/env/test_batch.cpp checks it on random states and actions, every
-// way.
+// way. An environment declares its batched form in its registry entry (EnvInfo::batch), so a
+// plug-in's can have one; makeLaneByLaneBatch steps copies of any environment instead
+// (tests/env/test_batch_forms.cpp).
 #pragma once
 
 #include <cstddef>
@@ -81,10 +83,14 @@ class BatchEnvironment {
 
   // Starts an episode in lane `lane`: its state is drawn from `rng` exactly as scalar().reset
   // draws it, and elapsed[lane] = 0.
-  void reset(Rng& rng, const BatchBuffers& io, std::size_t lane);
+  virtual void reset(Rng& rng, const BatchBuffers& io, std::size_t lane);
   // One step of every lane. Throws InputError (naming the lane) for a discrete action that is not
   // one of the choices, before any lane moves; continuous actions are clipped, NaN taken as 0.
   virtual void step(const BatchBuffers& io) const = 0;
+  // The episode of lane `from` moves to lane `to` (the caller has moved its rows of the buffers);
+  // the episode that lane `to` held is dropped. Nothing to do for a form whose lanes live wholly
+  // in the buffers (the default).
+  virtual void moveLane(std::size_t /*from*/, std::size_t /*to*/) {}
 
  protected:
   // `isa` must be resolved (Avx512, Avx2 or Scalar).
@@ -96,9 +102,11 @@ class BatchEnvironment {
   BatchIsa isa_;
 };
 
-// The batched form of `env` (a copy of its parameters), or nullptr when it has none: cart-pole
-// and Acrobot always, the swimmer when it steps with its fixed-size kernel (at most 8 segments,
-// reference solver off). Tetris has none (its learner evaluates afterstates in bulk instead).
+// The batched form of `env` (a copy of its parameters) that its registry entry declares
+// (EnvInfo::batch, looked up by env.name()), or nullptr when it has none: cart-pole and Acrobot
+// always, the swimmer when it steps with its fixed-size kernel (at most 8 segments, reference
+// solver off); a plug-in's environment where it declares one. Tetris has none (its learner
+// evaluates afterstates in bulk instead).
 std::unique_ptr<BatchEnvironment> makeBatchEnvironment(const Environment& env,
                                                        BatchIsa isa = BatchIsa::Auto);
 // Whether makeBatchEnvironment(env) gives a batched form; cheap (nothing is made).
@@ -108,5 +116,15 @@ bool hasBatchEnvironment(const Environment& env);
 std::unique_ptr<BatchEnvironment> makeBatchEnvironment(const std::string& name,
                                                        const Params& params,
                                                        BatchIsa isa = BatchIsa::Auto);
+
+// Any environment as a batch, lane by lane: lane l steps its own fresh copy of `env`
+// (Environment::freshCopy) through step(), one lane after another; nullptr when `env` cannot be
+// copied. Each lane's copy keeps its state: the `state` rows are written (after reset and step)
+// but not read, so lanes move only through moveLane. A discrete action that is not one of the
+// choices throws InputError before any lane moves for a one-component action; otherwise the
+// copy's step() throws, the lanes before it having moved. `isa` tells the caller's lane kernels
+// what they may use (usesAvx2); the copies step one at a time whatever it is.
+std::unique_ptr<BatchEnvironment> makeLaneByLaneBatch(const Environment& env,
+                                                      BatchIsa isa = BatchIsa::Auto);
 
 }  // namespace gpfd::env

@@ -28,6 +28,8 @@ struct StateRange {
 };
 
 class AfterstateGame;
+class BatchEnvironment;  // env/batch.hpp
+enum class BatchIsa;     // env/batch.hpp
 
 // A continuous box (one [low, high] per dimension) or a set of discrete choices. A discrete
 // action is passed to step() as its components (one component, the choice index, for a plain
@@ -51,7 +53,9 @@ struct StepResult {
 };
 
 // Contract: an Environment owns no global state, logs nothing in step(), and is used by one
-// thread at a time; make one instance per trial (see Registry::make).
+// thread at a time; make one instance per trial (see Registry::make). An episode depends only on
+// the parameters, the draws reset() makes from its Rng and the actions, not on earlier episodes
+// nor on which instance plays it (the lockstep player relies on it).
 class Environment {
  public:
   virtual ~Environment() = default;
@@ -90,9 +94,29 @@ class Environment {
   // The afterstate view of a game whose moves are chosen by looking one move ahead (Tetris), for
   // learners that need it (afterstate_game.hpp); nullptr for the others. Valid while this lives.
   virtual AfterstateGame* afterstateGame() { return nullptr; }
+
+  // A new instance with this one's parameters and settings but not its state (reset() starts it),
+  // or nullptr where none can be made. The lockstep player steps such copies lane by lane when
+  // the environment has no batched form (env/batch.hpp). The default makes one with
+  // Registry::global() from name() and params(): nullptr when the name is not registered, the
+  // entry refuses those parameters or makes another type. An environment with settings beyond
+  // params() overrides it.
+  virtual std::unique_ptr<Environment> freshCopy() const;
 };
 
 using Factory = std::function<std::unique_ptr<Environment>(const Params&)>;
+
+// An environment's batched form (env/batch.hpp): many instances stepped in one call, every lane
+// bit for bit what the scalar step() gives. `make` empty: none.
+struct BatchForm {
+  // Whether `env` (an instance of this entry) has the batched form; cheap, nothing made. Empty:
+  // every instance has it.
+  std::function<bool(const Environment& env)> available;
+  // The batched form of `prototype` (a copy of its parameters); called only where available.
+  // `isa` is resolved (Avx512, Avx2 or Scalar): the form hands it to BatchEnvironment's
+  // constructor and may use it or step one lane at a time whatever it is.
+  std::function<std::unique_ptr<BatchEnvironment>(const Environment& prototype, BatchIsa isa)> make;
+};
 
 // What the registry knows about one environment.
 struct EnvInfo {
@@ -101,17 +125,19 @@ struct EnvInfo {
   std::vector<ParamSpec> params;
   Factory make;
   std::string defaultLearner = "pg";  // The learner that commands use unless told otherwise.
+  BatchForm batch = {};               // Its batched form, if it has one.
 };
 
 // Maps names to factories. The built-in environments are registered on first use (one line each
 // in src/env/registry.cpp); plug-ins and programs add their own with add() (docs/environments.md).
-// info(name) and names() come from NamedRegistry.
+// info(name), find(name) and names() come from NamedRegistry.
 class Registry : public NamedRegistry<EnvInfo> {
  public:
   Registry() : NamedRegistry("environment") {}
   static Registry& global();
 
-  // Throws InputError when the name is taken or the factory missing.
+  // Throws InputError when the name is taken, the factory missing, or a batched form has
+  // `available` without `make`.
   void add(EnvInfo info);
   // Validates the parameter names against info(name).params (InputError on an unknown one) and
   // makes a fresh instance.

@@ -45,6 +45,8 @@ class Swimmer final : public Environment {
   void setState(std::span<const double> state) override;
   StepResult step(std::span<const double> action) override;
   std::vector<StateRange> typicalStateRanges() const override;
+  // Its config and the reference solver switch (not a parameter).
+  std::unique_ptr<Environment> freshCopy() const override;
 
   const SwimmerConfig& config() const { return config_; }
   int segments() const { return n_; }

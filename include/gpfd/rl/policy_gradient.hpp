@@ -33,8 +33,11 @@ struct PolicyGradientConfig {
   FeatureOptions features;
   // Each episode draws its start state and actions from its own stream, seeded from the run's
   // seed, the update and the episode. Lockstep (default): the episodes of an update run side by
-  // side through the batched environment (env/batch.hpp) where the environment has one;
-  // otherwise, or when false, one after another (the reference). Both give the same results.
+  // side through the environment's batched form (env/batch.hpp), or where it has none through
+  // copies of it stepped lane by lane (env::makeLaneByLaneBatch; an environment that cannot be
+  // copied plays sequentially); when false, one after another (the reference). Both give the
+  // same results, given that an episode depends only on the parameters, the Rng that reset()
+  // draws from and the actions (the Environment contract).
   bool lockstep = true;
   // Called with each row of the curve as soon as it is complete (progress output); may be empty.
   std::function<void(const CurvePoint&)> onPoint;

@@ -38,6 +38,11 @@ class NamedRegistry {
     }
     return it->second;
   }
+  // The entry named `name`, or nullptr.
+  const Info* find(const std::string& name) const {
+    const auto it = entries_.find(name);
+    return it == entries_.end() ? nullptr : &it->second;
+  }
   // In alphabetical order.
   std::vector<std::string> names() const {
     std::vector<std::string> out;

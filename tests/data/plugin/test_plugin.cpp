@@ -1,10 +1,18 @@
-// A plug-in for tests/run/plugin_test.cpp, built like examples/mountain-car (it links gpfd::plugin
-// only): an environment "walk" and a learner "hill", each registered with one line.
+// A plug-in for tests/run/plugin_test.cpp and tests/rl/lockstep_plugin_test.cpp, built like
+// examples/mountain-car (it links gpfd::plugin only): environments "walk" and "drift" and a
+// learner "hill", each registered with one line.
 //   walk: a point on a line; the action moves it; reward -|x| per step; 20 steps.
+//   drift: a point with a velocity; the action accelerates it; reward -x^2 per step; ends when
+//          |x| > 2 or after max_steps. It declares a batched form (env/batch.hpp) that steps its
+//          lanes with the same arithmetic; at exit it prints how many steps each form made.
 //   hill: hill climbing over linear deterministic policies: each update perturbs the weights
 //         (Gaussian, `noise`) and keeps them when one episode returns more.
+#include <array>
+#include <atomic>
 #include <cmath>
+#include <cstdio>
 
+#include "gpfd/env/batch.hpp"
 #include "gpfd/env/environment.hpp"
 #include "gpfd/rl/learner.hpp"
 #include "gpfd/run/plugin.hpp"
@@ -54,6 +62,95 @@ class Walk final : public env::Environment {
   WalkConfig config_;
   double x_ = 0.0;
   int steps_ = 0;
+};
+
+struct DriftConfig {
+  int maxSteps = 60;
+  static const ParamTable<DriftConfig>& table() {
+    static const auto table = ParamTable<DriftConfig>("drift").integer(
+        "max_steps", [](auto& c) -> auto& { return c.maxSteps; }, 1, 100000, "time limit");
+    return table;
+  }
+};
+
+// The steps each form made, printed at exit (when any): what the tests read.
+struct StepCounts {
+  std::atomic<long> scalar{0}, lanes{0};
+  ~StepCounts() {
+    if (scalar > 0 || lanes > 0) {
+      std::fprintf(stderr, "drift steps: %ld by step(), %ld by the batched form\n", scalar.load(),
+                   lanes.load());
+    }
+  }
+} counts;
+
+// One step of the dynamics, shared by both forms: returns the reward, sets `terminated`.
+double advance(double& x, double& v, double a, bool& terminated) {
+  a = std::isnan(a) ? 0.0 : std::fmax(-1.0, std::fmin(1.0, a));
+  v += 0.1 * a;
+  x += 0.1 * v;
+  terminated = std::fabs(x) > 2.0;
+  return -x * x;
+}
+
+class Drift final : public env::Environment {
+ public:
+  explicit Drift(DriftConfig config) : config_(config) {}
+  std::string name() const override { return "drift"; }
+  env::Params params() const override { return DriftConfig::table().write(config_); }
+  const std::vector<std::string>& stateNames() const override {
+    static const std::vector<std::string> names{"x", "v"};
+    return names;
+  }
+  env::ActionSpace actionSpace() const override {
+    env::ActionSpace space;
+    space.low = {-1.0};
+    space.high = {1.0};
+    space.names = {"push"};
+    return space;
+  }
+  void reset(Rng& rng) override {
+    s_[0] = rng.uniform(-1.0, 1.0);
+    s_[1] = 0.0;
+    steps_ = 0;
+  }
+  std::span<const double> state() const override { return s_; }
+  void setState(std::span<const double> s) override { s_ = {s[0], s[1]}; }
+  env::StepResult step(std::span<const double> action) override {
+    ++counts.scalar;
+    bool terminated = false;
+    const double reward = advance(s_[0], s_[1], action[0], terminated);
+    return {reward, terminated, ++steps_ >= config_.maxSteps};
+  }
+  std::vector<env::StateRange> typicalStateRanges() const override {
+    return {{-2.0, 2.0}, {-1.0, 1.0}};
+  }
+  int maxSteps() const { return config_.maxSteps; }
+
+ private:
+  DriftConfig config_;
+  std::array<double, 2> s_{};
+  int steps_ = 0;
+};
+
+// Drift's batched form: lane by lane with advance(), as step() does (no vector instructions).
+class DriftBatch final : public env::BatchEnvironment {
+ public:
+  DriftBatch(const Drift& drift, env::BatchIsa isa)
+      : BatchEnvironment(std::make_unique<Drift>(DriftConfig::table().read(drift.params())), isa),
+        maxSteps_(drift.maxSteps()) {}
+  void step(const env::BatchBuffers& io) const override {
+    for (std::size_t l = 0; l < io.lanes; ++l) {
+      bool terminated = false;
+      io.reward[l] = advance(io.state[l], io.state[io.stride + l], io.action[l], terminated);
+      io.terminated[l] = terminated ? 1 : 0;
+      io.truncated[l] = ++io.elapsed[l] >= maxSteps_ ? 1 : 0;
+    }
+    counts.lanes += static_cast<long>(io.lanes);
+  }
+
+ private:
+  int maxSteps_;
 };
 
 struct HillConfig {
@@ -133,6 +230,15 @@ void registerAll(PluginRegistries& r) {
   r.environments.add(
       {"walk", "a point on a line (a test plug-in)", WalkConfig::table().specs(),
        [](const env::Params& p) { return std::make_unique<Walk>(WalkConfig::table().read(p)); }});
+  r.environments.add(
+      {"drift",
+       "a point with a velocity, with a batched form (a test plug-in)",
+       DriftConfig::table().specs(),
+       [](const env::Params& p) { return std::make_unique<Drift>(DriftConfig::table().read(p)); },
+       "pg",
+       {.available = nullptr, .make = [](const env::Environment& prototype, env::BatchIsa isa) {
+          return std::make_unique<DriftBatch>(dynamic_cast<const Drift&>(prototype), isa);
+        }}});
   r.learners.add(
       {"hill", "hill climbing over linear policies (a test plug-in)", HillConfig::table().specs(),
        [](const Params& p) { return std::make_unique<Hill>(HillConfig::table().read(p)); },
