@@ -33,7 +33,8 @@ TEST(Plugin, ItsLearnerTrainsOnItsEnvironment) {
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5) << csv;  // Header and rows 0..3.
   EXPECT_NE(readText(dir + "/weights.json").find("\"learner\": \"hill\""), std::string::npos);
   // The built-in learner on the plug-in's environment, and the other way round is refused.
-  EXPECT_EQ(runGpfd(kPlugin + " train walk --param updates=2 --quiet --out " + dir).status, 0);
+  EXPECT_EQ(runGpfd(kPlugin + " train walk --param updates=2 --quiet --force --out " + dir).status,
+            0);
   const auto refused = runGpfd(kPlugin + " train tetris --learner hill --out " + dir);
   EXPECT_EQ(refused.status, 2);
   EXPECT_NE(refused.output.find("learner hill cannot learn on tetris"), std::string::npos)
