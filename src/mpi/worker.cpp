@@ -67,7 +67,7 @@ std::shared_ptr<const run::LearningTask> configure(const std::vector<char>& mess
 int serve(const Session& session, int threads, const std::string& version,
           const WorkerTestHooks& hooks) {
   const int count = workerThreads(session, threads);
-  const std::string host = session.host();
+  const std::string& host = session.host();
   std::shared_ptr<const run::LearningTask> learning;
   EvaluationPool pool(count);
   auto pause = protocol::kMinPause;
