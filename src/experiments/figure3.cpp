@@ -1,10 +1,11 @@
 #include "gpfd/experiments/figure3.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
+#include <cstdint>
 #include <ctime>
+#include <fstream>
 #include <limits>
 #include <stdexcept>
 
@@ -53,14 +54,14 @@ double nsPerCall(std::size_t calls, const std::vector<double>& states, F&& f) {
   return ns / static_cast<double>(calls);
 }
 
-bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool sameBits(double a, double b) {
+  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
 
 long residentKiB() {
   long pages = 0, resident = 0;
-  if (std::FILE* f = std::fopen("/proc/self/statm", "r")) {
-    if (std::fscanf(f, "%ld %ld", &pages, &resident) != 2) resident = 0;
-    std::fclose(f);
-  }
+  std::ifstream statm("/proc/self/statm");
+  if (!(statm >> pages >> resident)) resident = 0;
   return resident * 4;
 }
 

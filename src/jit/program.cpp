@@ -264,8 +264,9 @@ Program lower(const expr::Genome& genome, std::size_t inputDim) {
   return program;
 }
 
-void run(const Program& program, const double* state, double* features, double* v) {
+void run(const Program& program, const double* state, double* features, double* scratch) {
   namespace p = expr::protect;
+  double* const v = scratch;  // v[i]: the value of instruction i.
   const Instr* code = program.code.data();
   const std::size_t n = program.code.size();
   for (std::size_t i = 0; i < n; ++i) {

@@ -6,9 +6,7 @@
 #include <algorithm>
 #include <csignal>
 #include <cstdio>
-#include <cstdlib>
 #include <memory>
-#include <optional>
 #include <stdexcept>
 
 #include "evaluation_pool.hpp"
@@ -18,16 +16,6 @@
 
 namespace gpfd::mpi {
 namespace {
-
-std::optional<std::uint64_t> injectedFailure() {
-  const char* text = std::getenv("GPFD_MPI_INJECT_FAILURE");
-  if (text == nullptr || *text == '\0') return std::nullopt;
-  char* end = nullptr;
-  const auto task = std::strtoull(text, &end, 10);
-  if (*end != '\0')
-    throw InputError("not a task number", "GPFD_MPI_INJECT_FAILURE=" + std::string(text));
-  return task;
-}
 
 EvaluationPool::Reply failureReply(std::uint64_t task, const std::string& host) {
   bool input = false;
@@ -76,10 +64,10 @@ std::shared_ptr<const run::LearningTask> configure(const std::vector<char>& mess
 }
 
 // The worker loop; throws only when the protocol itself breaks.
-int serve(const Session& session, int threads, const std::string& version) {
-  std::optional<std::uint64_t> failAt;
+int serve(const Session& session, int threads, const std::string& version,
+          const WorkerTestHooks& hooks) {
   const int count = workerThreads(session, threads);
-  const std::string host = session.host();
+  const std::string& host = session.host();
   std::shared_ptr<const run::LearningTask> learning;
   EvaluationPool pool(count);
   auto pause = protocol::kMinPause;
@@ -111,7 +99,6 @@ int serve(const Session& session, int threads, const std::string& version) {
         return 0;  // The master sends Stop only when no task is out.
       case protocol::Config:
         try {
-          failAt = injectedFailure();
           learning = configure(message, version);
           sendToMaster({protocol::Ready, protocol::Writer().put(std::int32_t{count}).take()});
         } catch (...) {
@@ -120,7 +107,7 @@ int serve(const Session& session, int threads, const std::string& version) {
         }
         break;
       case protocol::Task:
-        pool.submit([bytes = std::move(message), learning, failAt, host]() {
+        pool.submit([bytes = std::move(message), learning, &hooks, host]() {
           protocol::Reader r(bytes);
           std::uint64_t task = protocol::kNoTask;
           try {
@@ -128,10 +115,7 @@ int serve(const Session& session, int threads, const std::string& version) {
             if (!learning) throw std::runtime_error("a task came before the config");
             const auto seed = r.get<std::uint64_t>();
             const auto genome = r.getGenome(static_cast<int>(learning->stateDim()));
-            if (failAt && task == *failAt) {
-              throw std::runtime_error(
-                  fmt::format("injected failure at task {} (GPFD_MPI_INJECT_FAILURE)", task));
-            }
+            if (hooks.beforeTask) hooks.beforeTask(task);
             Rng rng(seed);
             const double fitness = run::trialFitness(*learning, genome, rng);
             return EvaluationPool::Reply{protocol::Result,
@@ -154,10 +138,11 @@ int workerThreads(const Session& session, int threads) {
   return std::max(1, tbb::info::default_concurrency() / std::max(1, session.workersOnNode()));
 }
 
-int serveAsWorker(const Session& session, int threads, const std::string& version) {
+int serveAsWorker(const Session& session, int threads, const std::string& version,
+                  const WorkerTestHooks& hooks) {
   std::signal(SIGINT, SIG_IGN);
   try {
-    return serve(session, threads, version);
+    return serve(session, threads, version, hooks);
   } catch (const std::exception& e) {
     // The protocol itself broke (an MPI error, a message it does not know): the master would
     // wait for this worker forever, so the whole job ends here; the master's last checkpoint

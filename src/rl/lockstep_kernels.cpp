@@ -14,7 +14,8 @@ unsigned notFiniteBits(const Rows& rows, const double* values, std::size_t count
   lanes::MaskOf<T> bad = lanes::noLane<T>();
   for (std::size_t j = 0; j < count; ++j) {
     const T x = loadAs<T>(values + j * rows.stride + l);
-    bad = bad || lanes::isNan(x - x);  // inf - inf and NaN - NaN are NaN.
+    // inf - inf and NaN - NaN are NaN.
+    bad = bad || lanes::isNan(x - x);  // NOLINT(misc-redundant-expression)
   }
   return lanes::bitsOf(bad);
 }

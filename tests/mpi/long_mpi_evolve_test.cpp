@@ -22,17 +22,29 @@ namespace {
 
 std::string tinyConfig() { return tinyEvolveConfig("tiny-mpi", 5); }
 
-// Runs `mpiexec -n <ranks> gpfd <args>` with extra environment assignments; output merged.
-CommandResult runMpi(int ranks, const std::string& args, const std::string& env = "") {
+// Runs `mpiexec <launch>`; output merged.
+CommandResult runMpiexec(const std::string& launch) {
   CommandResult r;
-  const std::string command = "env MPIEXEC_TIMEOUT=120 " + env + " " + GPFD_MPIEXEC + " -n " +
-                              std::to_string(ranks) + " " + GPFD_BINARY + " " + args + " 2>&1";
+  const std::string command =
+      std::string("env MPIEXEC_TIMEOUT=120 ") + GPFD_MPIEXEC + " " + launch + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   char buffer[4096];
   while (std::fgets(buffer, sizeof buffer, pipe)) r.output += buffer;
   const int status = pclose(pipe);
   r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+// `gpfd <args>` on every one of `ranks` processes.
+CommandResult runMpi(int ranks, const std::string& args) {
+  return runMpiexec("-n " + std::to_string(ranks) + " " + GPFD_BINARY + " " + args);
+}
+
+// `gpfd <args>` as the master, beside 2 test workers (tests/mpi/worker/test_worker.cpp) started
+// with `workerArgs`: the released tool cannot inject failures.
+CommandResult runMpiWithTestWorkers(const std::string& args, const std::string& workerArgs) {
+  return runMpiexec(std::string("-n 1 ") + GPFD_BINARY + " " + args + " : -n 2 " +
+                    GPFD_MPI_TEST_WORKER + " " + workerArgs);
 }
 
 // Every result file that must not depend on ranks or threads (wall times removed).
@@ -92,8 +104,8 @@ TEST_F(MpiEvolve, ResumeUnderMpiGivesTheUninterruptedResult) {
 TEST_F(MpiEvolve, WorkerFailureEndsTheRunWithItsMessageAndACheckpoint) {
   // Generation 0 evaluates at most 12 genomes (tasks 0..11); task 14 falls in a later one.
   const auto dir = freshDir("mpi-failure");
-  const auto r = runMpi(3, "evolve " + tinyConfig() + " --quiet --threads 1 --out " + dir,
-                        "GPFD_MPI_INJECT_FAILURE=14");
+  const auto r = runMpiWithTestWorkers(
+      "evolve " + tinyConfig() + " --quiet --threads 1 --out " + dir, "--fail-at-task 14");
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("error: MPI worker"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("injected failure at task 14"), std::string::npos) << r.output;
@@ -109,13 +121,14 @@ TEST_F(MpiEvolve, WorkerFailureEndsTheRunWithItsMessageAndACheckpoint) {
 }
 
 TEST_F(MpiEvolve, WorkerSetupErrorReachesTheMaster) {
-  // A worker that cannot take part (here: an invalid failure-injection setting) stops the run
-  // before anything is written, with its message.
+  // A worker that cannot take part (here: one of another gpfd version) stops the run before
+  // anything is written, with its message.
   const auto dir = freshDir("mpi-setup-error");
-  const auto r = runMpi(3, "evolve " + tinyConfig() + " --quiet --threads 1 --out " + dir,
-                        "GPFD_MPI_INJECT_FAILURE=x");
+  const auto r = runMpiWithTestWorkers(
+      "evolve " + tinyConfig() + " --quiet --threads 1 --out " + dir, "--version 0.0.0-other");
   EXPECT_NE(r.status, 0) << r.output;
-  EXPECT_NE(r.output.find("GPFD_MPI_INJECT_FAILURE=x"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("this worker runs gpfd 0.0.0-other, the master gpfd"), std::string::npos)
+      << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir));
 }
 

@@ -1,6 +1,6 @@
-"""The scripts that summarise committed reproductions (scripts/discovery-cost, scripts/winners-curse)
-reproduce the figures docs/experiments.md quotes from docs/results, and refuse a directory
-without GP runs."""
+"""The scripts that summarise committed reproductions (scripts/discovery-cost,
+scripts/winners-curse) reproduce the figures docs/experiments.md quotes from docs/results, and
+refuse a directory without GP runs."""
 
 import subprocess
 import sys
@@ -9,8 +9,12 @@ import pytest
 
 
 def run_script(repo, name, *args):
-    return subprocess.run([sys.executable, str(repo / "scripts" / name), *args], cwd=repo,
-                          capture_output=True, text=True)
+    return subprocess.run(
+        [sys.executable, str(repo / "scripts" / name), *args],
+        cwd=repo,
+        capture_output=True,
+        text=True,
+    )
 
 
 def table_rows(output):
@@ -29,9 +33,13 @@ def test_discovery_cost_gives_the_documented_shares(repo):
     assert len(rows) == 5
     # docs/experiments.md, "Cost of the added evaluation": re-evaluation share, validation share,
     # added compute and early confirmations of the paper-scale runs.
-    expected = {"cartpole": ("6.4%", "12%"), "acrobot": ("7.3%", "13%"),
-                "swimmer3": ("8.6%", "17%"), "swimmer5": ("7.1%", "23%"),
-                "tetris": ("10.2%", "20%")}
+    expected = {
+        "cartpole": ("6.4%", "12%"),
+        "acrobot": ("7.3%", "13%"),
+        "swimmer3": ("8.6%", "17%"),
+        "swimmer5": ("7.1%", "23%"),
+        "tetris": ("10.2%", "20%"),
+    }
     for name, (reevaluated, added) in expected.items():
         cells = rows[f"{name} (docs/results/paper-runs)"]
         assert cells[1] == "5"
@@ -44,8 +52,13 @@ def test_discovery_cost_sets_the_default_validation_against_the_gp(repo):
     done = run_script(repo, "discovery-cost", "docs/results/robust-quick/new")
     assert done.returncode == 0, done.stderr
     shares = {cells[0].split()[0]: cells[-1] for cells in table_rows(done.stdout).values()}
-    assert shares == {"cartpole-quick": "30%", "acrobot-quick": "16%", "swimmer3-quick": "22%",
-                      "swimmer5-quick": "45%", "tetris-quick": "73%"}
+    assert shares == {
+        "cartpole-quick": "30%",
+        "acrobot-quick": "16%",
+        "swimmer3-quick": "22%",
+        "swimmer5-quick": "45%",
+        "tetris-quick": "73%",
+    }
 
 
 def test_winners_curse_gives_the_documented_agreement(repo):
@@ -53,11 +66,21 @@ def test_winners_curse_gives_the_documented_agreement(repo):
     assert done.returncode == 0, done.stderr
     rows = table_rows(done.stdout).values()
     within = {cells[0]: cells[-2] for cells in rows}
-    assert within == {"cartpole": "5 of 5", "acrobot": "5 of 5", "swimmer3": "4 of 5",
-                      "swimmer5": "5 of 5", "tetris": "5 of 5"}
+    assert within == {
+        "cartpole": "5 of 5",
+        "acrobot": "5 of 5",
+        "swimmer3": "4 of 5",
+        "swimmer5": "5 of 5",
+        "tetris": "5 of 5",
+    }
     pooled = {cells[0]: cells[-1] for cells in rows}
-    assert pooled == {"cartpole": "+0.69", "acrobot": "-0.88", "swimmer3": "+0.28",
-                      "swimmer5": "+0.79", "tetris": "+1.75"}
+    assert pooled == {
+        "cartpole": "+0.69",
+        "acrobot": "-0.88",
+        "swimmer3": "+0.28",
+        "swimmer5": "+0.79",
+        "tetris": "+1.75",
+    }
 
 
 def test_winners_curse_pools_the_runs_of_each_benchmark(repo):
