@@ -6,6 +6,7 @@ import json
 import shutil
 import subprocess
 import sys
+
 import tomllib
 
 # A config as older gpfd wrote it (sorted keys, nested tables indented), the paper's rates and a
