@@ -170,6 +170,10 @@ nb::tuple evolve(const std::string& config, const std::vector<std::string>& over
     request.makeEvaluator = [evaluate](const run::EvaluatorSetup& setup) {
       return std::make_unique<PythonBatchEvaluator>(evaluate, setup.configText, setup.onEvaluated);
     };
+    // An environment stepped in Python: the GP's evaluations go to `threads` worker processes;
+    // what runs in this process (validation, confirmation) runs on one thread, since more threads
+    // only queue on the GIL (with two, a run took 4x as long: each step handed the GIL over).
+    request.threads = 1;
   }
   std::atomic<bool> stop{false};
   PythonProgress progress(std::move(onGeneration), verbose, stop);

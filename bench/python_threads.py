@@ -1,0 +1,86 @@
+#!/usr/bin/env python3
+"""Discovery on an environment stepped in Python, with 1 and with 2 worker processes, side by side
+in one run: wall time and CPU time (this process and its workers) of a whole `gpfd.evolve`.
+
+Usage, with the package installed (scripts/test installs it in .venv):
+  .venv/bin/python bench/python_threads.py [--mountain-car]
+
+The environments: a tiny one of the user's own (a point pushed along a line: 2 variables, one
+continuous action, 50 steps) and, with --mountain-car, Gymnasium's MountainCarContinuous-v0.
+Each run: population 10, generations 2, seed 1, the default config (cartpole-quick's budgets),
+results in a fresh temporary directory. The results of 1 and 2 workers must be identical, and
+the script checks it.
+"""
+
+import argparse
+import resource
+import tempfile
+import time
+from pathlib import Path
+
+import gymnasium as gym
+import numpy as np
+
+import gpfd
+
+
+class Point(gym.Env):
+    """A point on a line, pushed by the action; reward -|x| per step; 50 steps."""
+
+    def __init__(self):
+        self.observation_space = gym.spaces.Box(-10.0, 10.0, (2,), np.float64)
+        self.action_space = gym.spaces.Box(-1.0, 1.0, (1,), np.float32)
+        self.state = np.zeros(2)
+        self.steps = 0
+
+    def reset(self, *, seed=None, options=None):
+        super().reset(seed=seed)
+        self.state = self.np_random.uniform(-1.0, 1.0, 2)
+        self.steps = 0
+        return self.state.copy(), {}
+
+    def step(self, action):
+        x, v = self.state
+        v = 0.9 * v + 0.1 * float(np.clip(action[0], -1.0, 1.0))
+        x = float(np.clip(x + v, -10.0, 10.0))
+        self.state = np.array([x, v])
+        self.steps += 1
+        return self.state.copy(), -abs(x), False, self.steps >= 50, {}
+
+
+def cpu_seconds() -> float:
+    own = resource.getrusage(resource.RUSAGE_SELF)
+    children = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return own.ru_utime + own.ru_stime + children.ru_utime + children.ru_stime
+
+
+def measure(env, threads: int) -> tuple[float, float, str]:
+    with tempfile.TemporaryDirectory() as tmp:
+        wall, cpu = time.perf_counter(), cpu_seconds()
+        run = gpfd.evolve(
+            env=env, seed=1, population=10, generations=2, threads=threads, out=Path(tmp) / "run"
+        )
+        wall, cpu = time.perf_counter() - wall, cpu_seconds() - cpu
+        return wall, cpu, run.best.to_text()
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--mountain-car", action="store_true")
+    args = parser.parse_args()
+    envs = [("tiny environment (Point)", Point)]
+    if args.mountain_car:
+        envs.append(("MountainCarContinuous-v0", "MountainCarContinuous-v0"))
+    print("| environment | threads | wall s | CPU s (with workers) |")
+    print("|---|---|---|---|")
+    for name, env in envs:
+        results = {}
+        for threads in (1, 2):
+            wall, cpu, best = measure(env, threads)
+            results[threads] = best
+            print(f"| {name} | {threads} | {wall:.1f} | {cpu:.1f} |", flush=True)
+        assert results[1] == results[2], f"{name}: 1 and 2 workers returned different features"
+
+
+if __name__ == "__main__":
+    main()
