@@ -1,6 +1,7 @@
-# The Python extension module gpfd._core (python/): nanobind bindings over gpfd's static libraries, linked
-# into one shared module. Built by `pip install .` (scikit-build-core, see pyproject.toml); a
-# developer build passes -DGPFD_BUILD_PYTHON=ON -DPython_EXECUTABLE=<venv>/bin/python.
+# The Python extension module gpfd._core (python/): nanobind bindings over gpfd's static libraries,
+# linked into one shared module, with type stubs. Built by `pip install .` (scikit-build-core, see
+# pyproject.toml); a developer build passes -DGPFD_BUILD_PYTHON=ON
+# -DPython_EXECUTABLE=<venv>/bin/python.
 find_package(Python 3.10 REQUIRED COMPONENTS Interpreter Development.Module)
 execute_process(
   COMMAND "${Python_EXECUTABLE}" -m nanobind --cmake_dir
@@ -23,6 +24,25 @@ if(GPFD_JIT_AVAILABLE)
   # (python/src/asmjit_in_shared_module.cpp).
   target_link_options(_core PRIVATE -Wl,--exclude-libs,libasmjit.a -Wl,--wrap=stderr)
 endif()
+
+# Type stubs (_core.pyi), written by nanobind's stubgen after each build of the module. stubgen
+# imports it as gpfd._core, so the module is built into a package of its own (an empty
+# __init__.py: no NumPy or Gymnasium needed) and the stubs name their types as users see them.
+set(GPFD_STUBGEN_PATH ${CMAKE_CURRENT_BINARY_DIR}/python_stubgen)
+file(CONFIGURE OUTPUT ${GPFD_STUBGEN_PATH}/gpfd/__init__.py CONTENT "")
+set_target_properties(_core PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${GPFD_STUBGEN_PATH}/gpfd)
+# python/stubgen_patterns.txt completes what the bindings' signatures leave open.
+set(GPFD_STUBGEN_PATTERNS ${PROJECT_SOURCE_DIR}/python/stubgen_patterns.txt)
+nanobind_add_stub(_core_stub MODULE gpfd._core PYTHON_PATH ${GPFD_STUBGEN_PATH}
+                  PATTERN_FILE ${GPFD_STUBGEN_PATTERNS} DEPENDS _core
+                  OUTPUT ${GPFD_STUBGEN_PATH}/gpfd/_core.pyi)
+
+# The wheel (pyproject.toml installs the component gpfd_wheel only, not cmake/install.cmake's C++
+# package): the module with its stubs in gpfd/, and the command-line tool as the script `gpfd`.
 if(SKBUILD)
-  install(TARGETS _core LIBRARY DESTINATION gpfd)
+  install(TARGETS _core LIBRARY DESTINATION gpfd COMPONENT gpfd_wheel)
+  install(FILES ${GPFD_STUBGEN_PATH}/gpfd/_core.pyi DESTINATION gpfd COMPONENT gpfd_wheel)
+  if(TARGET gpfd)
+    install(TARGETS gpfd RUNTIME DESTINATION ${SKBUILD_SCRIPTS_DIR} COMPONENT gpfd_wheel)
+  endif()
 endif()

@@ -25,6 +25,7 @@ def discover() -> gpfd.FeatureSet:
         set={"learner.params.updates": 15, "fitness.trials": 3},
         verbose=True,
     )
+    assert run.best is not None  # A finished run has its best.features.
     print(f"\nbest features (fitness {run.history['best'][-1]:.1f}), in {run.dir}:")
     print(run.best.show())
     return run.best
@@ -32,14 +33,19 @@ def discover() -> gpfd.FeatureSet:
 
 def reinforce(env: gym.Env, episodes: int, rng: np.random.Generator) -> list[float]:
     """A softmax policy linear in the observation (plus a bias), trained by REINFORCE with a
-    mean-return baseline: our own learner, which knows nothing of gpfd."""
+    mean-return baseline: our own learner, which knows nothing of gpfd. Needs a Box observation
+    and discrete actions."""
+    assert isinstance(env.observation_space, gym.spaces.Box)
+    assert isinstance(env.action_space, gym.spaces.Discrete)
     dim = env.observation_space.shape[0] + 1
     weights = np.zeros((env.action_space.n, dim))
     scale = np.ones(dim)  # Running scale of each input, so that one step size fits all features.
-    returns = []
+    returns: list[float] = []
     for _ in range(episodes):
         obs, _ = env.reset(seed=int(rng.integers(2**31)))
-        inputs, actions, rewards = [], [], []
+        inputs: list[np.ndarray] = []
+        actions: list[int] = []
+        rewards: list[float] = []
         done = False
         while not done:
             x = np.append(obs, 1.0)
@@ -52,7 +58,7 @@ def reinforce(env: gym.Env, episodes: int, rng: np.random.Generator) -> list[flo
             obs, reward, terminated, truncated, _ = env.step(action)
             inputs.append(x)
             actions.append(action)
-            rewards.append(reward)
+            rewards.append(float(reward))
             done = terminated or truncated
         returns.append(sum(rewards))
         baseline = np.mean(returns[-20:])

@@ -93,7 +93,7 @@ def _env_overrides(
 def evolve(
     config: str | os.PathLike | None = None,
     *,
-    env: str | Callable[[], Any] | None = None,
+    env: str | Callable[..., Any] | None = None,
     seed: int | None = None,
     threads: int = 0,
     population: int | None = None,
@@ -176,7 +176,7 @@ def fitness(
     features: FeatureSet | str | os.PathLike,
     config: str | os.PathLike | None = None,
     *,
-    env: str | Callable[[], Any] | None = None,
+    env: str | Callable[..., Any] | None = None,
     seed: int = 1,
     set: Mapping[str, Any] | Iterable[str] | None = None,
     env_kwargs: dict[str, Any] | None = None,

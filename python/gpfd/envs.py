@@ -64,6 +64,7 @@ def action_space(core: _core.EnvBatch) -> spaces.Space:
     if core.action_kind == "discrete":
         return spaces.Discrete(core.action_choices)
     if core.action_kind == "tetris":
+        assert core.tetris_columns is not None  # Set for Tetris.
         return spaces.MultiDiscrete([4, core.tetris_columns])
     low = np.asarray(core.action_low, dtype=np.float64)
     high = np.asarray(core.action_high, dtype=np.float64)
@@ -123,7 +124,7 @@ class GpfdEnv(gym.Env):
         values = np.ascontiguousarray(values, dtype=np.float64).ravel()
         if values.shape != self.observation_space.shape:
             raise ValueError(
-                f"{gym_id(self.gpfd_name)} has {self.observation_space.shape[0]} state variables "
+                f"{gym_id(self.gpfd_name)} has {len(self.state_names)} state variables "
                 f"({', '.join(self.state_names)}), got {values.size} values"
             )
         self._core.set_state(0, values)

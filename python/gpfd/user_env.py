@@ -16,7 +16,7 @@ import math
 import multiprocessing
 import os
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import cloudpickle
 import gymnasium as gym
@@ -24,6 +24,9 @@ import numpy as np
 from gymnasium import spaces
 
 from gpfd import _core
+
+if TYPE_CHECKING:
+    from multiprocessing.pool import Pool
 
 
 class EnvError(RuntimeError):
@@ -50,7 +53,9 @@ def state_names(space: spaces.Space) -> list[str]:
     return [f"x{i}" for i in range(math.prod(space.shape))]
 
 
-def resolve(env: str | Callable[[], gym.Env], env_kwargs: dict | None) -> tuple[str, Callable]:
+def resolve(
+    env: str | Callable[..., gym.Env], env_kwargs: dict[str, Any] | None
+) -> tuple[str, Callable[[], gym.Env]]:
     """(registry name, factory) for a Gymnasium id or a callable returning an environment."""
     if isinstance(env, str):
         if ":" not in env:  # "module:Id" imports the module first: gymnasium.make checks it.
@@ -177,7 +182,7 @@ class Evaluator:
         self.name = name
         self.factory = factory
         self.workers = workers if workers > 0 else (os.cpu_count() or 1)
-        self._pool = None
+        self._pool: Pool | None = None
 
     def __call__(self, config_text: str, tasks: list[tuple[bytes, int]]) -> list[float]:
         if self.workers == 1:

@@ -4,7 +4,10 @@ import os
 import shutil
 from pathlib import Path
 
+import gymnasium as gym
 import pytest
+
+from gpfd.envs import GpfdEnv
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -35,3 +38,10 @@ def cli() -> str:
     if found:
         return found
     pytest.skip("the gpfd command line is not built (set GPFD_CLI)")
+
+
+def gpfd_env(env: gym.Env) -> GpfdEnv:
+    """The gpfd environment under an environment's Gymnasium wrappers."""
+    base = env.unwrapped
+    assert isinstance(base, GpfdEnv), base
+    return base

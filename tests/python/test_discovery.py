@@ -71,6 +71,7 @@ def test_evolve_equals_gpfd_evolve(cli, tmp_path, config, env, threads):
         (tmp_path / "cli/generations.csv").read_text()
     )
     assert run.finished and run.generations == 3 and run.info["seed"] == 5
+    assert run.best is not None
     assert run.best.to_text() == (tmp_path / "cli/best.features").read_text()
 
 
@@ -106,6 +107,7 @@ def test_callback_sees_each_generation_and_can_stop_the_run(tmp_path):
     # The stopped run continues exactly: same as an uninterrupted one.
     resumed = gpfd.evolve(resume=tmp_path / "run")
     whole = gpfd.evolve(seed=2, population=8, generations=5, set=QUICK, out=tmp_path / "whole")
+    assert resumed.best is not None and whole.best is not None
     assert resumed.finished and resumed.best.to_text() == whole.best.to_text()
 
 
@@ -185,6 +187,7 @@ def test_load_run_reads_a_results_directory(repo):
     assert run.finished and run.generations == 50
     assert run.config["env"]["name"] == "cartpole"
     assert run.history["generation"].tolist() == list(range(50))
+    assert run.best is not None
     assert run.best.env == "cartpole" and run.best_of(49).n_features >= 1
     with pytest.raises(FileNotFoundError, match="holds no gpfd run"):
         gpfd.load_run(repo / "docs")
@@ -234,6 +237,7 @@ def _hold_lock(directory):
         stdout=subprocess.PIPE,
         text=True,
     )
+    assert holder.stdout is not None
     assert holder.stdout.readline().strip() == "locked"
     return holder
 

@@ -10,6 +10,7 @@ from gymnasium.utils.env_checker import check_env
 from gymnasium.vector import AutoresetMode, SyncVectorEnv
 
 import gpfd
+from conftest import gpfd_env
 from gpfd import _core
 from gpfd.envs import gym_id
 
@@ -60,14 +61,15 @@ def test_check_env_passes(env_id, params):
 def test_every_parameter_of_gpfd_envs_is_a_keyword(name):
     defaults = {p: default for p, default, _ in _core.env_params(name)}
     env = gym.make(gym_id(name), **defaults)
-    assert env.unwrapped.params == defaults
-    assert env.unwrapped.gpfd_name == name
+    assert gpfd_env(env).params == defaults
+    assert gpfd_env(env).gpfd_name == name
 
 
 def test_keyword_values_reach_the_environment():
     env = gym.make("gpfd/Swimmer-v0", segments=np.int64(4), dt=0.05, max_torque=2)
     assert env.observation_space.shape == (10,)
-    assert env.unwrapped.params["dt"] == "0.05"
+    assert gpfd_env(env).params["dt"] == "0.05"
+    assert isinstance(env.action_space, gym.spaces.Box)
     assert env.action_space.high.tolist() == [2.0, 2.0, 2.0]
     assert gym.make("gpfd/CartPole-v0", actions="discrete").action_space == gym.spaces.Discrete(2)
 
@@ -114,13 +116,13 @@ def test_a_seed_starts_where_gpfd_simulate_starts(cli, name):
     header, row0 = csv[0].split(","), csv[1].split(",")
     env = gym.make(gym_id(name))
     obs, _ = env.reset(seed=7)
-    names = env.unwrapped.state_names
+    names = gpfd_env(env).state_names
     expected = [float(row0[header.index(n)]) for n in names]
     assert obs.tolist() == expected
 
 
 def test_state_can_be_read_and_set():
-    env = gym.make("gpfd/CartPole-v0").unwrapped
+    env = gpfd_env(gym.make("gpfd/CartPole-v0"))
     env.reset(seed=1)
     env.set_state([0.1, 0.0, -0.05, 0.2])
     assert env.state.tolist() == [0.1, 0.0, -0.05, 0.2]
@@ -140,7 +142,7 @@ def test_discrete_actions_out_of_range_are_refused():
 
 
 def test_tetris_maps_actions_to_legal_placements():
-    env = gym.make("gpfd/Tetris-v0").unwrapped
+    env = gpfd_env(gym.make("gpfd/Tetris-v0"))
     _, info = env.reset(seed=3)
     mask = info["action_mask"]
     assert mask.shape == (4, 8) and mask.dtype == bool

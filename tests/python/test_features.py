@@ -3,6 +3,7 @@
 import pickle
 import subprocess
 import textwrap
+from typing import Any
 
 import numpy as np
 import pytest
@@ -64,7 +65,7 @@ def test_show_and_export_match_the_command_line(cli, control_file):
 
 
 def test_values_are_bit_identical_to_the_command_lines_numpy_export(cli, control_file):
-    namespace = {}
+    namespace: dict[str, Any] = {}
     exec(cli_text(cli, "features", "export", control_file, "--format", "python"), namespace)
     fs = gpfd.FeatureSet.load(str(control_file))
     x = states(1000)
@@ -223,7 +224,7 @@ def test_save_and_pickle_round_trip(control_file, tmp_path):
 def test_discovered_files_in_the_repository_evaluate_like_their_export(cli, repo):
     for path in sorted((repo / "docs/results/paper").glob("*/evolve-*/best.features")):
         fs = gpfd.FeatureSet.load(str(path))
-        namespace = {}
+        namespace: dict[str, Any] = {}
         exec(cli_text(cli, "features", "export", path, "--format", "python"), namespace)
         x = states(257, dim=fs.input_dim, seed=5)
         expected = namespace["features"](x)

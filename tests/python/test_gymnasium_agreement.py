@@ -1,6 +1,8 @@
 """gpfd's CartPole and Acrobot against Gymnasium's CartPole-v1 and Acrobot-v1: the same
 trajectories under the same actions from the same start state."""
 
+from typing import Any
+
 import gymnasium as gym
 import numpy as np
 import pytest
@@ -25,18 +27,19 @@ def policy(name, state, rng):
 def test_same_trajectories_as_gymnasium(ours_id, params, theirs_id, actions):
     ours = gym.make(ours_id, **params)
     theirs = gym.make(theirs_id)
+    their_env: Any = theirs.unwrapped  # Gymnasium's CartPoleEnv or AcrobotEnv: its state.
     rng = np.random.default_rng(1)
     steps = truncations = terminations = 0
     worst = 0.0
     for episode in range(12):
         state, _ = ours.reset(seed=episode)
         theirs.reset(seed=episode)
-        theirs.unwrapped.state = state.copy()  # The same start state.
+        their_env.state = state.copy()  # The same start state.
         while True:
             action = policy(ours_id, state, rng)
             state, reward, terminated, truncated, _ = ours.step(action)
             _, their_reward, their_terminated, their_truncated, _ = theirs.step(action)
-            their_state = np.asarray(theirs.unwrapped.state, dtype=np.float64)
+            their_state = np.asarray(their_env.state, dtype=np.float64)
             worst = max(worst, float(np.max(np.abs(state - their_state))))
             assert reward == their_reward
             assert terminated == their_terminated and truncated == their_truncated
@@ -55,7 +58,7 @@ def test_same_trajectories_as_gymnasium(ours_id, params, theirs_id, actions):
 def test_each_step_agrees_to_rounding(ours_id, params, theirs_id, actions):
     """Replayed from gpfd's state before every step, so that chaos cannot amplify rounding."""
     ours = gym.make(ours_id, **params)
-    theirs = gym.make(theirs_id).unwrapped
+    theirs: Any = gym.make(theirs_id).unwrapped
     theirs.reset(seed=0)
     rng = np.random.default_rng(2)
     state, _ = ours.reset(seed=3)

@@ -7,7 +7,10 @@ import shutil
 import subprocess
 import sys
 
-import tomllib
+if sys.version_info >= (3, 11):
+    import tomllib
+else:
+    import tomli as tomllib
 
 # A config as older gpfd wrote it (sorted keys, nested tables indented), the paper's rates and a
 # seed of 2^63 or more stored as a negative integer.

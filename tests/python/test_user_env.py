@@ -3,6 +3,7 @@
 import os
 import time
 from pathlib import Path
+from typing import Any
 
 import gymnasium as gym
 import numpy as np
@@ -12,7 +13,7 @@ from gymnasium import spaces
 import gpfd
 
 # Trials short enough for tests: 2 updates of 2 episodes of at most 50 steps.
-TINY = {
+TINY: dict[str, Any] = {
     "learner.params.updates": 2,
     "learner.params.episodes": 2,
     "learner.params.max_episode_steps": 50,
@@ -20,7 +21,7 @@ TINY = {
 }
 
 # One generation of six.
-SHORT = {"seed": 1, "population": 6, "generations": 1, "set": TINY}
+SHORT: dict[str, Any] = {"seed": 1, "population": 6, "generations": 1, "set": TINY}
 
 
 def without_seconds(path):
@@ -28,15 +29,21 @@ def without_seconds(path):
 
 
 def test_a_gymnasium_id_evolves_for_two_generations_in_worker_processes(tmp_path):
-    seen = []
-    common = {"env": "MountainCarContinuous-v0", "seed": 3, "population": 6, "generations": 2}
+    seen: list[dict[str, Any]] = []
+    common: dict[str, Any] = {
+        "env": "MountainCarContinuous-v0",
+        "seed": 3,
+        "population": 6,
+        "generations": 2,
+    }
     run = gpfd.evolve(**common, set=TINY, threads=2, out=tmp_path / "two", callback=seen.append)
     assert run.finished and [s["generation"] for s in seen] == [0, 1]
+    assert run.best is not None
     assert run.best.env == "MountainCarContinuous-v0" and run.best.variables == ["x0", "x1"]
     assert np.isfinite(run.history["best"]).all()
     # The same run on one process: the same result (each trial's resets are seeded).
     one = gpfd.evolve(**common, set=TINY, threads=1, out=tmp_path / "one")
-    assert one.best.to_text() == run.best.to_text()
+    assert one.best is not None and one.best.to_text() == run.best.to_text()
     assert without_seconds(tmp_path / "one/generations.csv") == without_seconds(
         tmp_path / "two/generations.csv"
     )
@@ -60,7 +67,7 @@ class PidRecorder(gym.Wrapper):
 def test_a_callable_runs_in_worker_processes(tmp_path):
     pids = tmp_path / "pids"
     pids.mkdir()
-    kwargs = {"directory": str(pids), "parent": os.getpid()}
+    kwargs: dict[str, Any] = {"directory": str(pids), "parent": os.getpid()}
     run = gpfd.evolve(env=PidRecorder, env_kwargs=kwargs, **SHORT, threads=2, out=tmp_path / "r")
     assert run.config["env"]["name"] == "python:PidRecorder"
     workers = {int(p.name) for p in pids.iterdir()} - {os.getpid()}
@@ -69,7 +76,7 @@ def test_a_callable_runs_in_worker_processes(tmp_path):
 
 def test_a_discrete_action_space_works(tmp_path):
     run = gpfd.evolve(env="CartPole-v1", **SHORT, threads=1, out=tmp_path / "run")
-    assert run.best.variables == ["x0", "x1", "x2", "x3"]
+    assert run.best is not None and run.best.variables == ["x0", "x1", "x2", "x3"]
 
 
 def test_fitness_on_a_python_environment():
@@ -80,7 +87,7 @@ def test_fitness_on_a_python_environment():
 
 
 class NaNAfterThreeSteps(gym.Env):
-    observation_space = spaces.Box(-1.0, 1.0, (2,), np.float64)
+    observation_space: spaces.Space[Any] = spaces.Box(-1.0, 1.0, (2,), np.float64)
     action_space = spaces.Discrete(2)
 
     def reset(self, *, seed=None, options=None):
@@ -132,4 +139,4 @@ def test_non_box_observations_are_refused(tmp_path):
     with pytest.raises(TypeError, match="Box observation space"):
         gpfd.evolve(env="FrozenLake-v1", out=tmp_path / "b")
     with pytest.raises(TypeError, match="env must be a name, a Gymnasium id or a callable"):
-        gpfd.evolve(env=3, out=tmp_path / "c")
+        gpfd.evolve(env=3, out=tmp_path / "c")  # type: ignore[arg-type]
