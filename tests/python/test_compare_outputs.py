@@ -13,6 +13,7 @@ def compare_outputs(repo):
     path = repo / "scripts" / "compare-outputs"
     loader = importlib.machinery.SourceFileLoader("compare_outputs", str(path))
     spec = importlib.util.spec_from_loader("compare_outputs", loader)
+    assert spec is not None
     module = importlib.util.module_from_spec(spec)
     loader.exec_module(module)
     return module
