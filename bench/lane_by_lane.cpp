@@ -13,66 +13,24 @@
 //   build/release/bench/bench_lane_by_lane --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 
-#include <ctime>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "../tests/rl/unbatched_cartpole.hpp"
 #include "gpfd/env/batch.hpp"
 #include "gpfd/env/cartpole.hpp"
 #include "gpfd/env/environment.hpp"
 #include "gpfd/expr/features_file.hpp"
 #include "gpfd/jit/compiled_feature_map.hpp"
 #include "gpfd/rl/policy_gradient.hpp"
+#include "side_by_side.hpp"
 
 namespace {
 
 using namespace gpfd;
 
-// Cart-pole under another name, without a batched form.
-class UnbatchedCartPole final : public env::Environment {
- public:
-  explicit UnbatchedCartPole(env::CartPoleConfig config) : inner_(config) {}
-  std::string name() const override { return "cartpole-unbatched"; }
-  env::Params params() const override { return inner_.params(); }
-  const std::vector<std::string>& stateNames() const override { return inner_.stateNames(); }
-  env::ActionSpace actionSpace() const override { return inner_.actionSpace(); }
-  void reset(Rng& rng) override { inner_.reset(rng); }
-  std::span<const double> state() const override { return inner_.state(); }
-  void setState(std::span<const double> state) override { inner_.setState(state); }
-  env::StepResult step(std::span<const double> action) override { return inner_.step(action); }
-
- private:
-  env::CartPole inner_;
-};
-
-const bool kRegistered = [] {
-  env::Registry::global().add({"cartpole-unbatched", "cart-pole without a batched form (bench)",
-                               env::CartPoleConfig::table().specs(), [](const Params& p) {
-                                 return std::make_unique<UnbatchedCartPole>(
-                                     env::CartPoleConfig::fromParams(p));
-                               }});
-  return true;
-}();
-
-double threadSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-struct Path {
-  double seconds = 0.0;
-  std::int64_t steps = 0;
-
-  template <class Run>
-  void time(Run&& run) {
-    const double start = threadSeconds();
-    steps += run();
-    seconds += threadSeconds() - start;
-  }
-  double nsPerStep() const { return steps > 0 ? 1e9 * seconds / static_cast<double>(steps) : 0.0; }
-};
+using bench::Path;
 
 struct Trial {
   std::string env;
@@ -87,6 +45,7 @@ const Trial kSwimmer9{
     "swimmer", {{"segments", "9"}, {"horizon", "100"}}, "th1\nsin(th5)\ndth2\n", 4};
 
 void run(benchmark::State& state, const Trial& trial, bool fitness) {
+  testing::registerUnbatchedCartPole("cartpole-unbatched");
   const auto environment = env::Registry::global().make(trial.env, trial.envParams);
   if (env::hasBatchEnvironment(*environment) || !env::makeLaneByLaneBatch(*environment)) {
     state.SkipWithError("the environment must have no batched form and be copyable");
@@ -126,9 +85,9 @@ void run(benchmark::State& state, const Trial& trial, bool fitness) {
       return steps;
     });
   }
-  if (slow.steps != quick.steps) state.SkipWithError("the paths played different steps");
-  state.counters["sequential_ns/step"] = slow.nsPerStep();
-  state.counters["lane_by_lane_ns/step"] = quick.nsPerStep();
+  if (slow.units != quick.units) state.SkipWithError("the paths played different steps");
+  state.counters["sequential_ns/step"] = slow.nsPerUnit();
+  state.counters["lane_by_lane_ns/step"] = quick.nsPerUnit();
   state.counters["speedup"] = quick.seconds > 0 ? slow.seconds / quick.seconds : 0.0;
 }
 

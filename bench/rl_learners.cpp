@@ -12,7 +12,6 @@
 //   placement by placement, fast = afterstates in bulk.
 #include <benchmark/benchmark.h>
 
-#include <ctime>
 #include <memory>
 #include <string>
 #include <tuple>
@@ -27,30 +26,13 @@
 #include "gpfd/rl/lambda_policy_iteration.hpp"
 #include "gpfd/rl/policy_gradient.hpp"
 #include "gpfd/run/learning_task.hpp"
+#include "side_by_side.hpp"
 
 namespace {
 
 using namespace gpfd;
 
-double threadSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-// Accumulates the time and the work of one path.
-struct Path {
-  double seconds = 0.0;
-  std::int64_t units = 0;
-
-  template <class Run>
-  void time(Run&& run) {
-    const double start = threadSeconds();
-    units += run();
-    seconds += threadSeconds() - start;
-  }
-  double nsPerUnit() const { return units > 0 ? 1e9 * seconds / static_cast<double>(units) : 0.0; }
-};
+using bench::Path;
 
 void report(benchmark::State& state, const Path& reference, const Path& fast, const char* unit) {
   state.counters[std::string("reference_ns/") + unit] = reference.nsPerUnit();

@@ -1,5 +1,4 @@
 // The registry entry of policy gradient with Rprop: its parameters and how it trains.
-#include "gpfd/env/batch.hpp"
 #include "gpfd/rl/policy_gradient.hpp"
 
 namespace gpfd::rl {
@@ -92,15 +91,14 @@ class PolicyGradientLearner final : public Learner {
 
   // With lockstep, the runs' episodes of each update are played side by side
   // (trainPolicyGradientRuns) through the environment's batched form, or lane by lane through
-  // copies of it (Environment::freshCopy) where it has none; otherwise, and for an environment
-  // that cannot be copied, one run after another, each on its own environment (the reference).
+  // copies of it (Environment::freshCopy) where it has none, or one after another on this one
+  // environment where it cannot be copied; without lockstep, one run after another, each on its
+  // own environment (the reference). Every way gives the same curves.
   std::vector<LearningCurve> trainRuns(const EnvironmentMaker& makeEnv,
                                        const features::FeatureMap& map, std::span<Rng> rngs,
                                        const RunPointCallback& onPoint) const override {
+    if (!config_.lockstep) return Learner::trainRuns(makeEnv, map, rngs, onPoint);
     const auto env = makeEnv();
-    if (!config_.lockstep || !(env::hasBatchEnvironment(*env) || env->freshCopy())) {
-      return Learner::trainRuns(makeEnv, map, rngs, onPoint);
-    }
     PolicyGradientConfig config = config_;
     config.onRunPoint = onPoint;
     return trainPolicyGradientRuns(*env, map, config, rngs);

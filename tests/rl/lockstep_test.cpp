@@ -19,6 +19,7 @@
 #include "gpfd/rl/policy_gradient.hpp"
 #include "gpfd/run/learning_task.hpp"
 #include "same_curves.hpp"
+#include "unbatched_cartpole.hpp"
 
 namespace gpfd::rl {
 namespace {
@@ -26,36 +27,11 @@ namespace {
 using testing::expectSameCurves;
 using testing::sameBits;
 
-// Cart-pole under another name, without a batched form (so the lockstep player steps copies of
-// it lane by lane), counting the instances made.
-class CountedCartPole final : public env::Environment {
- public:
-  explicit CountedCartPole(env::CartPoleConfig config) : inner_(config) { ++made; }
-  std::string name() const override { return "counted-cartpole"; }
-  env::Params params() const override { return inner_.params(); }
-  const std::vector<std::string>& stateNames() const override { return inner_.stateNames(); }
-  env::ActionSpace actionSpace() const override { return inner_.actionSpace(); }
-  void reset(Rng& rng) override { inner_.reset(rng); }
-  std::span<const double> state() const override { return inner_.state(); }
-  void setState(std::span<const double> state) override { inner_.setState(state); }
-  env::StepResult step(std::span<const double> action) override { return inner_.step(action); }
-
-  static inline std::atomic<int> made{0};
-
- private:
-  env::CartPole inner_;
-};
+using gpfd::testing::UnbatchedCartPole;
 
 void registerCountedCartPole() {
-  static const bool done = [] {
-    env::Registry::global().add({"counted-cartpole", "cart-pole without a batched form (test)",
-                                 env::CartPoleConfig::table().specs(), [](const Params& p) {
-                                   return std::make_unique<CountedCartPole>(
-                                       env::CartPoleConfig::fromParams(p));
-                                 }});
-    return true;
-  }();
-  static_cast<void>(done);
+  gpfd::testing::registerUnbatchedCartPole("counted-cartpole");
+  gpfd::testing::registerUnbatchedCartPole("uncopyable-cartpole", false);
 }
 
 struct Setting {
@@ -265,15 +241,15 @@ TEST(Lockstep, WithoutABatchedFormTheLanesStepCopies) {
   PolicyGradientConfig c;
   c.updates = 2;
   c.lockstep = false;
-  int before = CountedCartPole::made;
+  int before = UnbatchedCartPole::made;
   Rng a(1);
   trainPolicyGradient(*environment, map, c, a);
-  EXPECT_EQ(CountedCartPole::made, before);
+  EXPECT_EQ(UnbatchedCartPole::made, before);
   c.lockstep = true;
-  before = CountedCartPole::made;
+  before = UnbatchedCartPole::made;
   Rng b(1);
   trainPolicyGradient(*environment, map, c, b);
-  EXPECT_EQ(CountedCartPole::made - before, 1 + c.episodesPerUpdate);  // Prototype and lanes.
+  EXPECT_EQ(UnbatchedCartPole::made - before, 1 + c.episodesPerUpdate);  // Prototype and lanes.
 }
 
 // GP fitness goes through the same learner: equal trial fitness both ways.
@@ -299,14 +275,19 @@ TEST(Lockstep, TrialFitnessIsTheSameBothWays) {
 
 // The trials of a fitness evaluation on an environment without a batched form are played
 // together lane by lane (Learner::trainRuns of pg), with the fitness of one after another.
-TEST(Lockstep, TrialFitnessWithoutABatchedFormIsTheSameBothWays) {
+run::ExperimentConfig trialExperiment(const std::string& env) {
   registerCountedCartPole();
   run::ExperimentConfig experiment;
-  experiment.env = "counted-cartpole";
+  experiment.env = env;
   experiment.envParams = {{"max_steps", "150"}};
   experiment.learner = "pg";
   experiment.trials = 3;
   experiment.learnerParams = {{"updates", "4"}};
+  return experiment;
+}
+
+TEST(Lockstep, TrialFitnessWithoutABatchedFormIsTheSameBothWays) {
+  run::ExperimentConfig experiment = trialExperiment("counted-cartpole");
   const auto genome = expr::parseFeaturesFile("sin(th)\ndth + dx\n", "test",
                                               {"x", "dx", "th", "dth"}, "counted-cartpole")
                           .genome;
@@ -314,14 +295,33 @@ TEST(Lockstep, TrialFitnessWithoutABatchedFormIsTheSameBothWays) {
   experiment.learnerParams["lockstep"] = "false";
   const run::LearningTask sequential(experiment, run::LearningTask::Budget::Trial);
   Rng a(21), b(21);
-  int before = CountedCartPole::made;
+  int before = UnbatchedCartPole::made;
   const double x = run::trialFitness(lockstep, genome, a);
-  // One environment made for the call, a copy showing that it can be copied, the batch's
-  // prototype and one copy per lane (3 trials x 10 episodes).
-  EXPECT_EQ(CountedCartPole::made - before, 3 + 3 * 10);
-  before = CountedCartPole::made;
+  // One environment made for the call, the batch's prototype and one copy per lane (3 trials x
+  // 10 episodes); nothing made only to learn whether it can be copied.
+  EXPECT_EQ(UnbatchedCartPole::made - before, 2 + 3 * 10);
+  before = UnbatchedCartPole::made;
   const double y = run::trialFitness(sequential, genome, b);
-  EXPECT_EQ(CountedCartPole::made - before, 1 + 3);  // The call's, then one per trial.
+  EXPECT_EQ(UnbatchedCartPole::made - before, 3);  // One per trial.
+  EXPECT_TRUE(std::isfinite(x));
+  EXPECT_TRUE(sameBits(x, y)) << x << " vs " << y;
+}
+
+// An environment that cannot be copied, with lockstep asked for: the runs are played one after
+// another on the call's one environment, with the same fitness as without lockstep.
+TEST(Lockstep, TrialFitnessOfAnEnvironmentThatCannotBeCopiedIsTheSameBothWays) {
+  run::ExperimentConfig experiment = trialExperiment("uncopyable-cartpole");
+  const auto genome = expr::parseFeaturesFile("sin(th)\ndth + dx\n", "test",
+                                              {"x", "dx", "th", "dth"}, "uncopyable-cartpole")
+                          .genome;
+  const run::LearningTask lockstep(experiment, run::LearningTask::Budget::Trial);
+  experiment.learnerParams["lockstep"] = "false";
+  const run::LearningTask sequential(experiment, run::LearningTask::Budget::Trial);
+  Rng a(21), b(21);
+  int before = UnbatchedCartPole::made;
+  const double x = run::trialFitness(lockstep, genome, a);
+  EXPECT_EQ(UnbatchedCartPole::made - before, 1);  // The call's, shared by the trials.
+  const double y = run::trialFitness(sequential, genome, b);
   EXPECT_TRUE(std::isfinite(x));
   EXPECT_TRUE(sameBits(x, y)) << x << " vs " << y;
 }
