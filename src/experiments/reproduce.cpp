@@ -314,7 +314,7 @@ io::Report benchmark(Experiment& e, const ExperimentConfig& config, const std::s
     a.features = outcome.features;
     a.size = outcome.size;
     a.gpFitness = outcome.gpBest;
-    a.validated = outcome.winner;
+    a.reported = outcome.winner;
     a.remeasured = e.remeasure(run.config, run.dir, run.features.genome);
     a.final = summarize(set.finals);
     a.area = summarize(set.areas);

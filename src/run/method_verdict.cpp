@@ -40,6 +40,11 @@ std::vector<std::string> split(const std::string& line) {
 }
 
 const char* kHeader =
+    "run,seed,returned,features,size,gp_fitness,reported_n,reported_mean,reported_sd,"
+    "remeasured_n,remeasured_mean,remeasured_sd,final_n,final_mean,final_sd,area_n,area_mean,"
+    "area_sd,final_welch_p,final_mann_whitney_p,area_welch_p,area_mann_whitney_p";
+// The header before the reported score's columns were renamed (the same columns).
+const char* kHeaderBefore =
     "run,seed,returned,features,size,gp_fitness,validated_n,validated_mean,validated_sd,"
     "remeasured_n,remeasured_mean,remeasured_sd,final_n,final_mean,final_sd,area_n,area_mean,"
     "area_sd,final_welch_p,final_mann_whitney_p,area_welch_p,area_mann_whitney_p";
@@ -68,7 +73,7 @@ std::string formatMethodCsv(const std::vector<RunAssessment>& runs, const Summar
   std::string csv = std::string(kHeader) + "\n";
   for (const auto& r : runs) {
     csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.run, r.seed, r.returned,
-                       r.features, r.size, r.gpFitness, summaryFields(r.validated),
+                       r.features, r.size, r.gpFitness, summaryFields(r.reported),
                        summaryFields(r.remeasured), summaryFields(r.final), summaryFields(r.area),
                        r.finalVsOriginal.welchP, r.finalVsOriginal.mannWhitneyP,
                        r.areaVsOriginal.welchP, r.areaVsOriginal.mannWhitneyP);
@@ -84,7 +89,9 @@ std::vector<RunAssessment> parseMethodCsv(const std::string& text, const std::st
   std::stringstream in(text);
   std::string line;
   std::getline(in, line);
-  if (line != kHeader) throw InputError("not a method-level results file", source);
+  if (line != kHeader && line != kHeaderBefore) {
+    throw InputError("not a method-level results file", source);
+  }
   try {
     while (std::getline(in, line)) {
       const auto cells = split(line);
@@ -101,7 +108,7 @@ std::vector<RunAssessment> parseMethodCsv(const std::string& text, const std::st
       r.features = std::stoul(cells[3]);
       r.size = std::stoul(cells[4]);
       r.gpFitness = std::stod(cells[5]);
-      r.validated = summaryFrom(cells, 6);
+      r.reported = summaryFrom(cells, 6);
       r.remeasured = summaryFrom(cells, 9);
       r.final = summaryFrom(cells, 12);
       r.area = summaryFrom(cells, 15);
@@ -120,11 +127,11 @@ std::vector<RunAssessment> parseMethodCsv(const std::string& text, const std::st
 std::vector<std::vector<std::string>> runTable(const std::vector<RunAssessment>& runs,
                                                const Summary& originalFinal) {
   std::vector<std::vector<std::string>> rows{
-      {"run", "returned", "features (nodes)", "GP fitness (biased)", "validated",
+      {"run", "returned", "features (nodes)", "GP fitness (biased)", "reported",
        "re-measured (fresh seeds)", "final", "vs original", "Welch p", "area Welch p"}};
   for (const auto& r : runs) {
     rows.push_back({std::to_string(r.run), r.returned, fmt::format("{} ({})", r.features, r.size),
-                    fmt::format("{:.4g}", r.gpFitness), meanSe(r.validated), meanSe(r.remeasured),
+                    fmt::format("{:.4g}", r.gpFitness), meanSe(r.reported), meanSe(r.remeasured),
                     fmt::format("{:.4g}", r.final.mean),
                     percent(r.final.mean - originalFinal.mean, originalFinal.mean),
                     fmt::format("{:.3g}", r.finalVsOriginal.welchP),

@@ -47,7 +47,7 @@ RunOutcome outcomeOf(const Discovery& discovery, int run) {
 
 std::string formatRunsCsv(const std::vector<RunOutcome>& outcomes) {
   std::string csv =
-      "run,seed,gp_best,returned,features,size,validated_mean,validated_se,original_mean,"
+      "run,seed,gp_best,returned,features,size,reported_mean,reported_se,original_mean,"
       "original_se,difference,p_vs_original,scored_by\n";
   for (const auto& o : outcomes) {
     csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", o.run, o.seed, o.gpBest,

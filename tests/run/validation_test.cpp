@@ -193,6 +193,12 @@ TEST(MethodVerdict, CountsRunsAndReadsBack) {
   EXPECT_EQ(again.finalDifferences, verdict.finalDifferences);
   EXPECT_EQ(verdictTable(verdict, &again).size(), 3u);
   EXPECT_THROW(parseMethodCsv("run,seed\n1,2\n", "bad.csv", readFinal, readArea), InputError);
+  // A file written before the reported score's columns were renamed reads the same.
+  std::string before = formatMethodCsv(runs, originalFinal, originalArea);
+  const std::string renamed = "reported_n,reported_mean,reported_sd";
+  ASSERT_NE(before.find(renamed), std::string::npos);
+  before.replace(before.find(renamed), renamed.size(), "validated_n,validated_mean,validated_sd");
+  EXPECT_EQ(parseMethodCsv(before, "before.csv", readFinal, readArea).size(), 8u);
 }
 
 }  // namespace

@@ -20,7 +20,8 @@ struct RunAssessment {
   std::string returned;  // "discovered", "original" (validation kept them) or "gp-best".
   std::size_t features = 0, size = 0;
   double gpFitness = 0.0;  // The GP's own best fitness: a biased number, shown for contrast.
-  Summary validated;       // Validation scores of the returned set (n = 0 without validation).
+  Summary reported;        // The score the run reports for the returned set: confirmed, or
+                           // selection without confirmation (n = 0 without validation).
   Summary remeasured;      // Trial scores of the returned set on fresh seeds.
   Summary final, area;     // Long assessment.
   Comparison finalVsOriginal, areaVsOriginal;
