@@ -1,23 +1,51 @@
 #include "gpfd/service/results_directory.hpp"
 
 #include <filesystem>
+#include <vector>
 
+#include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::service {
 namespace fs = std::filesystem;
 
-bool holdsFiles(const std::string& dir) {
+namespace {
+
+// Removes the temporary files of atomic writes in `dir` and below: with the lock held, no gpfd
+// process writes there, so they are what a killed writer left behind.
+void removeStaleTemporaries(const std::string& dir) {
+  std::error_code ec;
+  std::vector<fs::path> stale;
+  for (auto it = fs::recursive_directory_iterator(dir, ec);
+       !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    if (it->is_regular_file(ec) && isAtomicWriteTemporary(it->path().filename().string())) {
+      stale.push_back(it->path());
+    }
+  }
+  for (const auto& path : stale) fs::remove(path, ec);
+}
+
+// Whether `dir` holds anything but the lock file and empty directories.
+bool holdsFilesBelow(const fs::path& dir, bool top) {
   std::error_code ec;
   for (auto it = fs::directory_iterator(dir, ec); !ec && it != fs::directory_iterator();
        it.increment(ec)) {
-    if (it->path().filename() != DirectoryLock::kFileName) return true;
+    if (top && it->path().filename() == DirectoryLock::kFileName) continue;
+    if (!it->is_directory(ec) || it->is_symlink(ec) || holdsFilesBelow(it->path(), false)) {
+      return true;
+    }
   }
   return false;
 }
 
+}  // namespace
+
+bool holdsFiles(const std::string& dir) { return holdsFilesBelow(dir, true); }
+
 DirectoryLock lockDirectory(const std::string& dir, const std::string& what) {
-  return DirectoryLock(dir, what);
+  DirectoryLock lock(dir, what);
+  removeStaleTemporaries(dir);
+  return lock;
 }
 
 DirectoryLock claimResultsDirectory(const OutputChoice& choice, const std::string& defaultName,
@@ -32,6 +60,7 @@ DirectoryLock claimResultsDirectory(const OutputChoice& choice, const std::strin
     throw InputError("not a directory", choice.flag + " " + dir);
   }
   DirectoryLock lock(dir, what);
+  removeStaleTemporaries(dir);
   if (check) check(dir);
   if (existed && !choice.force && holdsFiles(dir)) {
     throw InputError("the directory already holds files that this command would overwrite; pass " +

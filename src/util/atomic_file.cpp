@@ -13,8 +13,19 @@
 
 namespace gpfd {
 
+namespace {
+constexpr const char* kTemporaryInfix = ".tmp.";
+}
+
+bool isAtomicWriteTemporary(const std::string& name) {
+  const std::size_t at = name.rfind(kTemporaryInfix);
+  if (at == std::string::npos || at == 0) return false;
+  const std::string pid = name.substr(at + std::strlen(kTemporaryInfix));
+  return !pid.empty() && pid.find_first_not_of("0123456789") == std::string::npos;
+}
+
 void writeFileAtomically(const std::string& path, const std::string& contents) {
-  const std::string temporary = path + ".tmp." + std::to_string(::getpid());
+  const std::string temporary = path + kTemporaryInfix + std::to_string(::getpid());
   const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) throw InputError(std::string("cannot write: ") + std::strerror(errno), path);
   const char* data = contents.data();

@@ -72,6 +72,29 @@ TEST(EvolveService, ADirectoryHoldingOtherFilesNeedsForce) {
   EXPECT_THROW(service::evolve(request, quiet, stop), InputError);
 }
 
+// A run killed before it stored its config leaves only gpfd's own traces (an empty best/, a
+// temporary file of an atomic write, the lock file): a plain restart into it is no overwrite.
+TEST(EvolveService, ARunKilledBeforeItsConfigStartsAgainWithoutForce) {
+  const auto dir = freshDir("service-killed-early");
+  std::filesystem::create_directories(dir + "/best");
+  const auto temporary = writeText("service-killed-early/config.toml.tmp.123456", "name = \"t");
+  writeText("service-killed-early/.gpfd.lock", "123456\n");
+  service::EvolveProgress quiet;
+  std::atomic<bool> stop{false};
+  StopAfterFirst stopper(stop);
+  const auto result = service::evolve(tinyRequest("service-killed-early", dir), stopper, stop);
+  EXPECT_FALSE(result.finished);
+  EXPECT_TRUE(std::filesystem::exists(dir + "/config.toml"));
+  EXPECT_FALSE(std::filesystem::exists(temporary));
+  // A file of the user's in a subdirectory still needs force.
+  const auto other = freshDir("service-killed-nested");
+  std::filesystem::create_directories(other + "/best");
+  writeText("service-killed-nested/best/mine.txt", "mine\n");
+  stop.store(false);
+  EXPECT_THROW(service::evolve(tinyRequest("service-killed-nested", other), quiet, stop),
+               InputError);
+}
+
 // An interrupted run's features files hold the genome as the learner saw it (normalised here)
 // and say that it is not validated.
 TEST(EvolveService, AStoppedRunsFeaturesAreWhatTheLearnerSawAndSaySo) {

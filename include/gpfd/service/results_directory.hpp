@@ -24,8 +24,11 @@ struct OutputChoice {
 using DirectoryCheck = std::function<void(const std::string& dir)>;
 
 // Locks the chosen directory. A given one must be a usable, non-empty path; `check` runs on it,
-// and then, when it already holds files (other than the lock file), it is refused unless `force`,
-// naming the flag. `defaultName` must be a plain name (the config's or the environment's).
+// and then, when it already holds files (holdsFiles), it is refused unless `force`, naming the
+// flag. Once locked, the temporary files that a killed writer left (util/atomic_file.hpp) are
+// removed, here and by lockDirectory, so that a run killed before it stored its config starts
+// again with a plain restart. `defaultName` must be a plain name (the config's or the
+// environment's).
 DirectoryLock claimResultsDirectory(const OutputChoice& choice, const std::string& defaultName,
                                     const DirectoryCheck& check = {},
                                     const std::string& what = "results directory");
@@ -34,7 +37,7 @@ DirectoryLock claimResultsDirectory(const OutputChoice& choice, const std::strin
 // a reproduction), creating it when missing. InputError when another process holds it.
 DirectoryLock lockDirectory(const std::string& dir, const std::string& what = "results directory");
 
-// Whether `dir` holds any entry other than the lock file.
+// Whether `dir` holds anything but the lock file and empty directories.
 bool holdsFiles(const std::string& dir);
 
 }  // namespace gpfd::service

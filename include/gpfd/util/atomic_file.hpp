@@ -9,6 +9,9 @@ namespace gpfd {
 // renamed over `path`. Throws InputError naming the path when any step fails (unwritable
 // directory, full disk); the temporary file is removed and `path` is left as it was.
 void writeFileAtomically(const std::string& path, const std::string& contents);
+// Whether `name` (a file name) is one of writeFileAtomically's temporary files (`NAME.tmp.PID`),
+// left behind only when the writer was killed mid-write.
+bool isAtomicWriteTemporary(const std::string& name);
 
 // The whole file; throws InputError naming the path when it cannot be read.
 std::string readFile(const std::string& path);
