@@ -20,7 +20,7 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
-from gpfd import _core
+from gpfd import _core, render
 
 # Gymnasium ids of the built-in environments; any other registered gpfd environment gets
 # gpfd/<Name>-v0.
@@ -80,13 +80,14 @@ class GpfdEnv(gym.Env):
     :meth:`afterstates` lists every placement with the state it leads to.
     """
 
-    metadata: dict[str, Any] = {"render_modes": []}
+    metadata: dict[str, Any] = {"render_modes": list(render.MODES), "render_fps": 50}
 
     def __init__(self, gpfd_env: str, render_mode: str | None = None, **params: Any):
         check_params(gpfd_env, params)
-        if render_mode is not None:
-            raise ValueError(f"{gym_id(gpfd_env)} does not render (render_mode={render_mode!r})")
+        render.check_mode(gym_id(gpfd_env), gpfd_env, render_mode)
+        self.render_mode = render_mode
         self._core = _core.EnvBatch(gpfd_env, params, 1, "disabled")
+        self.metadata = render.metadata(self._core.params)
         self.gpfd_name = gpfd_env
         self.state_names = tuple(self._core.state_names)
         self.params = dict(self._core.params)
@@ -128,6 +129,13 @@ class GpfdEnv(gym.Env):
                 f"({', '.join(self.state_names)}), got {values.size} values"
             )
         self._core.set_state(0, values)
+
+    def render(self) -> np.ndarray | None:
+        """With render_mode="rgb_array": the current state drawn (gpfd.render), H x W x 3 uint8."""
+        if self.render_mode is None:
+            gym.logger.warn(f"{gym_id(self.gpfd_name)} renders only with render_mode='rgb_array'")
+            return None
+        return render.frame(self._core)
 
     def afterstates(self) -> dict[str, np.ndarray]:
         """Tetris: every legal placement: ``actions`` (K x 2), ``features`` (the state after it,

@@ -14,11 +14,12 @@ from __future__ import annotations
 
 from typing import Any
 
+import gymnasium as gym
 import numpy as np
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
-from gpfd import _core
+from gpfd import _core, render
 from gpfd.envs import action_space, check_params, gym_id, observation_space, seed64
 
 _MODES = {
@@ -44,8 +45,8 @@ class GpfdVectorEnv(VectorEnv):
         environment per instance: the reference) or "batched" (gpfd.InputError where there is
         none); ``self.engine`` says which one steps."""
         check_params(gpfd_env, params)
-        if render_mode is not None:
-            raise ValueError(f"{gym_id(gpfd_env)} does not render (render_mode={render_mode!r})")
+        render.check_mode(gym_id(gpfd_env), gpfd_env, render_mode)
+        self.render_mode = render_mode
         mode = AutoresetMode(autoreset_mode)
         self._core = _core.EnvBatch(gpfd_env, params, int(num_envs), _MODES[mode], engine)
         self.engine = self._core.engine
@@ -53,7 +54,7 @@ class GpfdVectorEnv(VectorEnv):
         self.state_names = tuple(self._core.state_names)
         self.params = dict(self._core.params)
         self.num_envs = int(num_envs)
-        self.metadata = {"autoreset_mode": mode, "render_modes": []}
+        self.metadata = {"autoreset_mode": mode, **render.metadata(self._core.params)}
         self.single_observation_space = observation_space(self._core)
         self.single_action_space = action_space(self._core)
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
@@ -93,6 +94,14 @@ class GpfdVectorEnv(VectorEnv):
         if final_mask is not None and final_mask.any():
             info = {"final_obs": final_obs, "_final_obs": final_mask}
         return obs, rewards, terminated, truncated, info
+
+    def render(self) -> tuple[np.ndarray, ...] | None:
+        """With render_mode="rgb_array": every instance drawn (gpfd.render), as Gymnasium's vector
+        environments give them: a tuple of num_envs H x W x 3 uint8 frames."""
+        if self.render_mode is None:
+            gym.logger.warn(f"{gym_id(self.gpfd_name)} renders only with render_mode='rgb_array'")
+            return None
+        return tuple(render.frame(self._core, i) for i in range(self.num_envs))
 
     @property
     def states(self) -> np.ndarray:

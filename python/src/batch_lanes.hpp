@@ -31,6 +31,10 @@ class BatchLanes {
   // Sets the lane's state variables (checked by the caller) and restarts its step count, as
   // Environment::setState does.
   void writeState(std::size_t lane, std::span<const double> row);
+  // The steps of the lane's episode so far (what its time limit reads), and setting them (after
+  // writeState, to restore a lane).
+  std::int32_t elapsed(std::size_t lane) const { return lanes_.elapsed[lane]; }
+  void setElapsed(std::size_t lane, std::int32_t steps) { lanes_.elapsed[lane] = steps; }
 
   // What the last step() gave the lane.
   env::StepResult result(std::size_t lane) const {

@@ -39,6 +39,8 @@ Params paramsFromDict(const nb::dict& values, const std::string& where);
 
 void bindFeatureSet(nb::module_& m);
 void bindEnvironments(nb::module_& m);
+// After bindEnvironments: pickling and Tetris' board on EnvBatch (env_state_bindings.cpp).
+void bindEnvironmentState(nb::module_& m);
 void bindPythonEnvironments(nb::module_& m);
 void bindDiscovery(nb::module_& m);
 

@@ -89,6 +89,16 @@ class EnvBatch {
   // steps any instance (InputError naming the instance and the value).
   void step(const double* actions, const BatchStep& out);
 
+  // Pickling (env_batch_state.cpp): every instance's whole dynamic state as words
+  // (env/snapshot.hpp): its random stream, whether its episode ended (next-step autoreset), and
+  // its environment's snapshot (loop) or its lane's state variables and step count (batched,
+  // which by BatchEnvironment's contract determine the lane's next steps). InputError when the
+  // environment has no snapshots (Environment::snapshot).
+  std::vector<std::uint64_t> snapshot() const;
+  // Takes back a snapshot of a batch of the same environment, parameters, size and engine;
+  // InputError, nothing changed, for one that is not.
+  void restore(std::span<const std::uint64_t> words);
+
  private:
   void checkAction(std::size_t i, const double* action) const;
   void resetInstance(std::size_t i);

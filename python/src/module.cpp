@@ -86,6 +86,7 @@ NB_MODULE(_core, m) {
   bindRegistry(m);
   bindFeatureSet(m);
   bindEnvironments(m);
+  bindEnvironmentState(m);
   bindPythonEnvironments(m);
   bindDiscovery(m);
 }

@@ -10,6 +10,7 @@
 #include "batch_factories.hpp"
 #include "gpfd/env/angles.hpp"
 #include "gpfd/env/common_params.hpp"
+#include "gpfd/env/snapshot.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::env {
@@ -92,6 +93,14 @@ void Acrobot::setState(std::span<const double> state) {
 
 Acrobot::State Acrobot::derivative(const State& s, double tau) const {
   return acrobot::derivative(config_.dynamics, s, tau);
+}
+
+std::vector<std::uint64_t> Acrobot::snapshot() const {
+  return stateAndStepsSnapshot(name(), state_, steps_);
+}
+
+void Acrobot::restore(std::span<const std::uint64_t> words) {
+  restoreStateAndSteps(name(), words, state_, steps_);
 }
 
 std::vector<StateRange> Acrobot::typicalStateRanges() const {

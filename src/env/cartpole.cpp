@@ -8,6 +8,7 @@
 #include "batch_factories.hpp"
 #include "cartpole_dynamics.hpp"
 #include "gpfd/env/common_params.hpp"
+#include "gpfd/env/snapshot.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::env {
@@ -84,6 +85,14 @@ void CartPole::setState(std::span<const double> state) {
 
 CartPole::State CartPole::derivative(const State& s, double force) const {
   return cartpole::derivative(config_.gravity, s, force);
+}
+
+std::vector<std::uint64_t> CartPole::snapshot() const {
+  return stateAndStepsSnapshot(name(), state_, steps_);
+}
+
+void CartPole::restore(std::span<const std::uint64_t> words) {
+  restoreStateAndSteps(name(), words, state_, steps_);
 }
 
 std::vector<StateRange> CartPole::typicalStateRanges() const {

@@ -9,6 +9,7 @@
 #include "batch_factories.hpp"
 #include "gpfd/env/angles.hpp"
 #include "gpfd/env/common_params.hpp"
+#include "gpfd/env/snapshot.hpp"
 #include "gpfd/expr/trig.hpp"
 #include "gpfd/util/error.hpp"
 
@@ -133,6 +134,14 @@ Swimmer::Swimmer(SwimmerConfig config) : config_(config), n_(config.segments) {
   lu_ = Eigen::PartialPivLU<Eigen::MatrixXd>(n_);
   for (auto* v : {&cos_, &sin_, &force_x_, &force_y_}) v->assign(n, 0.0);
   for (auto* v : {&k1_, &k2_, &k3_, &k4_, &tmp_}) v->assign(2 * n + 2, 0.0);
+}
+
+std::vector<std::uint64_t> Swimmer::snapshot() const {
+  return stateAndStepsSnapshot(name(), state_, steps_);
+}
+
+void Swimmer::restore(std::span<const std::uint64_t> words) {
+  restoreStateAndSteps(name(), words, state_, steps_);
 }
 
 std::vector<StateRange> Swimmer::typicalStateRanges() const {

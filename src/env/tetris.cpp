@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "gpfd/env/common_params.hpp"
+#include "gpfd/env/snapshot.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::env {
@@ -140,6 +142,36 @@ void Tetris::setState(std::span<const double> state) {
     }
   }
   setBoard(board, piece);
+}
+
+std::vector<std::uint64_t> Tetris::snapshot() const {
+  SnapshotWriter out(name());
+  out.integer(config_.rows).integer(config_.cols);
+  for (int r = 0; r < board_.storedRows(); ++r) out.word(board_.rowBits(r));
+  out.integer(piece_).integer(gameOver_ ? 1 : 0).integer(steps_).rng(pieces_);
+  return out.take();
+}
+
+void Tetris::restore(std::span<const std::uint64_t> words) {
+  SnapshotReader in(name(), words);
+  in.integer(config_.rows, config_.rows, "rows");
+  in.integer(config_.cols, config_.cols, "cols");
+  TetrisBoard board(config_.rows, config_.cols);
+  for (int r = 0; r < board.storedRows(); ++r) {
+    // At most fullRow(): no cell beyond the last column.
+    board.setRowBits(r, static_cast<std::uint32_t>(in.integer(0, board.fullRow(), "a row")));
+  }
+  const auto piece = static_cast<int>(in.integer(0, kPieceCount - 1, "the piece"));
+  const bool gameOver = in.integer(0, 1, "game over") == 1;
+  const auto steps = static_cast<int>(in.integer(0, std::numeric_limits<int>::max(), "steps"));
+  const Rng::State pieces = in.rng();
+  in.finish();
+  board_ = board;
+  piece_ = piece;
+  gameOver_ = gameOver;
+  steps_ = steps;
+  pieces_.setState(pieces);
+  refreshState();
 }
 
 void Tetris::checkAction(std::span<const double> action) const {

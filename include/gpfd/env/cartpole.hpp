@@ -42,6 +42,9 @@ class CartPole final : public Environment {
   void setState(std::span<const double> state) override;
   StepResult step(std::span<const double> action) override;
   std::vector<StateRange> typicalStateRanges() const override;
+  // The state variables and the episode's step count.
+  std::vector<std::uint64_t> snapshot() const override;
+  void restore(std::span<const std::uint64_t> words) override;
 
   const CartPoleConfig& config() const { return config_; }
   // d/dt (x, dx, th, dth) at `s` under force `force` (docs/benchmarks.md).

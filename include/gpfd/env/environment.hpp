@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <span>
@@ -102,6 +103,16 @@ class Environment {
   // entry refuses those parameters or makes another type. An environment with settings beyond
   // params() overrides it.
   virtual std::unique_ptr<Environment> freshCopy() const;
+
+  // The whole dynamic state as words (env/snapshot.hpp): the state variables and whatever else
+  // the next steps depend on (the episode's step count; Tetris' board, piece, piece generator and
+  // game-over flag), so that restore() on an instance with the same parameters continues exactly
+  // as this one, bit for bit (Python pickles environments with it). Empty where the environment
+  // has none: the default, which an environment overrides together with restore().
+  virtual std::vector<std::uint64_t> snapshot() const { return {}; }
+  // Takes back a snapshot of an instance with the same parameters; InputError, nothing changed,
+  // for words that are not one. The default refuses every snapshot.
+  virtual void restore(std::span<const std::uint64_t> words);
 };
 
 using Factory = std::function<std::unique_ptr<Environment>(const Params&)>;

@@ -45,6 +45,9 @@ class Swimmer final : public Environment {
   void setState(std::span<const double> state) override;
   StepResult step(std::span<const double> action) override;
   std::vector<StateRange> typicalStateRanges() const override;
+  // The state variables and the episode's step count.
+  std::vector<std::uint64_t> snapshot() const override;
+  void restore(std::span<const std::uint64_t> words) override;
   // Its config and the reference solver switch (not a parameter).
   std::unique_ptr<Environment> freshCopy() const override;
 

@@ -65,6 +65,10 @@ class Tetris final : public Environment, public AfterstateGame {
   void setState(std::span<const double> state) override;
   StepResult step(std::span<const double> action) override;
   void sampleAction(Rng& rng, std::span<double> action) const override;
+  // The board (hidden rows included), the piece, the piece generator, game over and the step
+  // count.
+  std::vector<std::uint64_t> snapshot() const override;
+  void restore(std::span<const std::uint64_t> words) override;
   AfterstateGame* afterstateGame() override { return this; }
 
   // AfterstateGame: every placement of the current piece.

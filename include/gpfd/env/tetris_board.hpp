@@ -42,7 +42,11 @@ class TetrisBoard {
   // Row `row` (0 <= row < rows + 4) as a bit mask, bit c for column c; a full row is fullRow().
   std::uint32_t rowBits(int row) const { return cells_[static_cast<std::size_t>(row)]; }
   std::uint32_t fullRow() const { return full_; }
+  // The rows that the board stores (rows + 8: the hidden ones too), for rowBits and setRowBits.
+  int storedRows() const { return rows_ + 8; }
   void set(int row, int col, bool value);
+  // Sets row `row` (0 <= row < storedRows()) to `bits`, which must lie within fullRow().
+  void setRowBits(int row, std::uint32_t bits) { cells_[static_cast<std::size_t>(row)] = bits; }
   void clear();
 
   // Drops orientation `orientation` of `piece` with its leftmost cell in `column` (both already
