@@ -71,7 +71,10 @@ class EvolveBar:
             desc=f"{self._label}{stage}",
             file=self._file,
             bar_format=fmt,
-            dynamic_ncols=True,
+            # One bar at a time: never hidden as an overflow, even where a terminal says it has
+            # no rows (tqdm hides bars past the height it reads; `script` and some CI pseudo-
+            # terminals report 0).
+            nrows=20,
             smoothing=0,  # ETA from the mean speed: generations cost about the same.
             leave=True,
         )

@@ -107,8 +107,8 @@ def test_a_real_pseudo_terminal_gets_the_bar(tmp_path):
         f"out={str(tmp_path / 'run')!r})\n"
     )
     leader, follower = pty.openpty()
-    # A new pseudo-terminal is 0 columns wide; a terminal window has a width.
-    fcntl.ioctl(follower, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 100, 0, 0))
+    # A new pseudo-terminal is 0 columns wide; give it a width, and no height, as `script` does.
+    fcntl.ioctl(follower, termios.TIOCSWINSZ, struct.pack("HHHH", 0, 100, 0, 0))
     try:
         child = subprocess.Popen(
             [sys.executable, "-c", script], stdout=follower, stderr=follower, close_fds=True
