@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from gpfd import _core, user_env
+from gpfd import _core, progress, user_env
 from gpfd._core import FeatureSet
 
 if sys.version_info >= (3, 11):
@@ -103,7 +103,7 @@ def evolve(
     callback: Callback | None = None,
     resume: str | os.PathLike | None = None,
     env_kwargs: dict[str, Any] | None = None,
-    verbose: bool = False,
+    verbose: bool | None = None,
     force: bool = False,
 ) -> Run:
     """Discovers features with GP, exactly as ``gpfd evolve`` does, and returns the run.
@@ -124,7 +124,10 @@ def evolve(
         seconds, best_features); a true return value stops the run there.
     resume: continue the run in this directory (with its stored config; only ``generations`` may
         extend it; give ``env`` again for an environment stepped in Python).
-    verbose: print what ``gpfd evolve`` prints: a line per generation and what the run returned.
+    verbose: None (default): a progress bar (generation, best GP fitness, ETA; then validation
+        and confirmation) when stderr is a terminal or this runs in a Jupyter notebook, nothing
+        otherwise; True: print what ``gpfd evolve`` prints, a line per generation and what the
+        run returned; False: nothing. What stops a run is always said (gpfd.progress).
 
     Ctrl-C stops the run at the end of the running generation, after its checkpoint.
     """
@@ -147,7 +150,11 @@ def evolve(
     if evaluator is not None:
         evaluator.workers = threads if threads > 0 else (os.cpu_count() or 1)
 
+    bar = progress.EvolveBar() if progress.shows_bar(verbose) else None
+
     def on_generation(stats: dict[str, Any]) -> bool:
+        if bar is not None:
+            bar.generation(stats)
         return bool(callback(stats)) if callback is not None else False
 
     try:
@@ -163,6 +170,7 @@ def evolve(
             on_generation,
             evaluator,
             bool(verbose),
+            bar,
         )
     finally:
         if evaluator is not None:

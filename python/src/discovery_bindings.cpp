@@ -9,9 +9,13 @@
 #include <nanobind/stl/vector.h>
 
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
 #include <map>
 #include <mutex>
 #include <optional>
+#include <stop_token>
+#include <thread>
 
 #include "bindings.hpp"
 #include "feature_set.hpp"
@@ -104,27 +108,45 @@ service::TextSink pythonStream(const char* name) {
 }
 
 // gpfd.evolve's view of a run: the per-generation callback (a true return value stops the run),
-// Ctrl-C checked after each generation, and the command's text when verbose (what stops a run is
-// always said, on stderr).
+// Ctrl-C checked after each generation, the command's text when verbose (what stops a run is
+// always said, on stderr), and a progress display (`observer`, gpfd.progress.EvolveBar) when one is
+// given: it is told when a run starts and ends and, every half second from a thread of its own,
+// the running stage; the command's header and outcome lines are printed around it.
 class PythonProgress final : public service::EvolveProgress {
  public:
-  PythonProgress(nb::object onGeneration, bool verbose, std::atomic<bool>& stop)
+  PythonProgress(nb::object onGeneration, bool verbose, nb::object observer,
+                 std::atomic<bool>& stop)
       : onGeneration_(std::move(onGeneration)),
+        observer_(std::move(observer)),
         text_({.out = pythonStream("stdout"),
                .err = pythonStream("stderr"),
                .terminal = false,
-               .quiet = !verbose,
+               .quiet = !verbose && observer_.is_none(),
                .resumeCommand = "gpfd.evolve(resume=\"{}\")"}),
         stop_(stop) {}
+  ~PythonProgress() override { stopPolling(); }
 
   void runStarted(const run::Discovery& d, const std::string& dir,
                   const std::string& label) override {
     variables_ = stateNamesOf(d.config());
     text_.runStarted(d, dir, label);
+    if (observer_.is_none()) return;
+    {
+      nb::gil_scoped_acquire gil;
+      nb::dict info;
+      info["label"] = label;
+      info["dir"] = dir;
+      info["generations"] = d.config().gp.generations;
+      info["done"] = d.history().size();  // Generations done before (a resumed run).
+      info["population"] = d.populationSize();
+      observer_.attr("run_started")(info);
+    }
+    discovery_ = &d;
+    poller_ = std::jthread([this](const std::stop_token& token) { poll(token); });
   }
   void generationDone(const run::Discovery& d, const run::GenerationRecord& record,
                       const std::string& label) override {
-    text_.generationDone(d, record, label);
+    if (observer_.is_none()) text_.generationDone(d, record, label);
     nb::gil_scoped_acquire gil;
     // Ctrl-C stops the run once this generation's checkpoint is written.
     if (PyErr_CheckSignals() != 0) throw nb::python_error();
@@ -134,10 +156,12 @@ class PythonProgress final : public service::EvolveProgress {
   }
   void runStopped(const run::Discovery& d, const std::string& dir, const std::string& resumeDir,
                   bool error) override {
+    runEnded(false);
     text_.runStopped(d, dir, resumeDir, error);
   }
   void runFinished(const run::RunOutcome& o, const std::string& dir,
                    const std::string& label) override {
+    runEnded(true);
     text_.runFinished(o, dir, label);
   }
   void setFinished(const std::vector<run::RunOutcome>& o, const std::string& dir) override {
@@ -147,17 +171,67 @@ class PythonProgress final : public service::EvolveProgress {
     text_.alreadyComplete(dir, generations);
   }
 
+  // Ends the polling thread; call without the GIL, which the thread takes.
+  void stopPolling() {
+    if (!poller_.joinable()) return;
+    poller_.request_stop();
+    poller_.join();
+  }
+
  private:
+  // The running stage to the observer every half second, until stopped. An error in the
+  // observer ends the polling (reported as unraisable), never the run.
+  void poll(const std::stop_token& token) {
+    std::mutex mutex;
+    std::condition_variable_any wake;
+    std::unique_lock lock(mutex);
+    while (true) {
+      wake.wait_for(lock, token, std::chrono::milliseconds(500), [] { return false; });
+      if (token.stop_requested()) return;
+      nb::gil_scoped_acquire gil;
+      try {
+        tellStage();
+      } catch (nb::python_error& e) {
+        e.discard_as_unraisable("gpfd.evolve's progress display");
+        return;
+      }
+    }
+  }
+
+  // Needs the GIL.
+  void tellStage() {
+    const run::RunStage stage = discovery_->stage();
+    observer_.attr("poll")(run::stageName(stage.kind), stage.done, stage.total);
+  }
+
+  // The stage where the run ended (so that the display shows it whatever the timing), then the
+  // end. A display error is reported as unraisable: the run's own outcome or error goes on.
+  void runEnded(bool finished) {
+    if (observer_.is_none() || discovery_ == nullptr) return;
+    stopPolling();
+    nb::gil_scoped_acquire gil;
+    try {
+      tellStage();
+      observer_.attr("run_ended")(finished);
+    } catch (nb::python_error& e) {
+      e.discard_as_unraisable("gpfd.evolve's progress display");
+    }
+    discovery_ = nullptr;
+  }
+
   nb::object onGeneration_;
+  nb::object observer_;
   service::EvolveText text_;
   std::atomic<bool>& stop_;
   std::vector<std::string> variables_;
+  const run::Discovery* discovery_ = nullptr;  // The running one (runStarted to its end).
+  std::jthread poller_;
 };
 
 nb::tuple evolve(const std::string& config, const std::vector<std::string>& overrides,
                  std::optional<std::string> out, bool force, const std::string& resume, int threads,
                  std::optional<int> generations, std::optional<int> runs, nb::object onGeneration,
-                 nb::object evaluate, bool verbose) {
+                 nb::object evaluate, bool verbose, nb::object observer) {
   service::EvolveRequest request;
   request.config = config;
   request.overrides = overrides;
@@ -176,10 +250,15 @@ nb::tuple evolve(const std::string& config, const std::vector<std::string>& over
     request.threads = 1;
   }
   std::atomic<bool> stop{false};
-  PythonProgress progress(std::move(onGeneration), verbose, stop);
+  PythonProgress progress(std::move(onGeneration), verbose, std::move(observer), stop);
   service::EvolveResult result;
   {
     nb::gil_scoped_release release;
+    // The polling thread ends before the GIL is taken back, whatever happens.
+    const struct StopPolling {
+      PythonProgress& p;
+      ~StopPolling() { p.stopPolling(); }
+    } stopPolling{progress};
     result = service::evolve(request, progress, stop);
   }
   return nb::make_tuple(result.dir, result.finished);
@@ -278,7 +357,7 @@ void bindDiscovery(nb::module_& m) {
   m.def("evolve", &evolve, nb::arg("config"), nb::arg("overrides"), nb::arg("out").none(),
         nb::arg("force"), nb::arg("resume"), nb::arg("threads"), nb::arg("generations").none(),
         nb::arg("runs").none(), nb::arg("on_generation").none(), nb::arg("evaluate").none(),
-        nb::arg("verbose"),
+        nb::arg("verbose"), nb::arg("observer").none() = nb::none(),
         "Runs (or resumes) discovery through the service layer, like `gpfd evolve`; returns "
         "(results dir, finished).");
   m.def("trial_fitness", &trialFitness, nb::arg("config_text"), nb::arg("genome"), nb::arg("seed"),

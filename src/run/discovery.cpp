@@ -39,6 +39,7 @@ struct Discovery::State {
   std::string configText;
   LearningTask task;
   std::atomic<long> done{0};
+  std::atomic<int> stage{RunStage::Generations}, stageDone{0}, stageTotal{0};  // Discovery::stage
   int threads = 0;  // As recorded in run.json: the resolved count, or the option given to MPI.
   std::unique_ptr<gp::Evaluator> evaluator;
   gp::CachingEvaluator cache;
@@ -73,6 +74,12 @@ struct Discovery::State {
         options.threads);
     threads = local->threads();
     return local;
+  }
+
+  void enterStage(RunStage::Kind kind, int total) {
+    stageDone.store(0);
+    stageTotal.store(total);
+    stage.store(kind);
   }
 
   std::string path(const std::string& name) const { return options.outDir + "/" + name; }
@@ -130,6 +137,7 @@ struct Discovery::State {
   // Scores the hall of fame members (and the original variables) not validated yet.
   void validateHallOfFame() {
     const auto start = std::chrono::steady_clock::now();
+    enterStage(RunStage::Validation, 0);
     if (!validator) validator = std::make_unique<Validator>(config, threads);
     std::vector<ValidatedSet> fresh;
     const auto known = [&](const std::string& key) {
@@ -151,7 +159,9 @@ struct Discovery::State {
     }
     std::vector<const expr::Genome*> genomes;
     for (const auto& set : fresh) genomes.push_back(set.isOriginal() ? nullptr : &set.genome);
+    stageTotal.store(static_cast<int>(genomes.size()) * validator->seeds());
     auto scores = validator->score(genomes);
+    stageDone.store(stageTotal.load());
     for (std::size_t i = 0; i < fresh.size(); ++i) {
       fresh[i].scores = std::move(scores[i]);
       validation.sets.push_back(std::move(fresh[i]));
@@ -180,6 +190,7 @@ struct Discovery::State {
     auto& confirmation = validation.confirmation;
     confirmation.key = winner.key;  // Empty for the original variables.
     const Validator confirm = Validator::confirmation(config, threads);
+    enterStage(RunStage::Confirmation, static_cast<int>(genomes.size()) * confirm.seeds());
     const auto maps = confirm.maps(genomes);
     // The original variables alone are confirmed for their score only: nothing to decide.
     const int looks = winner.isOriginal() ? 1 : config.validation.confirmLooks;
@@ -187,6 +198,7 @@ struct Discovery::State {
       const int until = seedsAtLook(confirm.seeds(), look, looks);
       auto scores = confirm.score(maps, trained, until);
       trained = until;
+      stageDone.store(static_cast<int>(genomes.size()) * trained);
       confirmation.original.insert(confirmation.original.end(), scores[0].begin(), scores[0].end());
       if (scores.size() < 2) continue;
       confirmation.winner.insert(confirmation.winner.end(), scores[1].begin(), scores[1].end());
@@ -304,6 +316,7 @@ void Discovery::run(const std::function<void(const GenerationRecord&)>& onGenera
   const int every = s_->config.validation.every;
   while (!s_->generationsDone() && !stop.load()) {
     s_->done.store(0);
+    s_->enterStage(RunStage::Generations, s_->config.gp.population);
     const auto stats = evolution.generation() < 0 ? evolution.initialize() : evolution.step();
     s_->persist(stats);
     onGeneration(s_->history.back());
@@ -330,5 +343,23 @@ expr::Genome Discovery::asLearnerSees(const expr::Genome& genome) const {
 }
 long Discovery::progress() const { return s_->done.load(std::memory_order_relaxed); }
 int Discovery::populationSize() const { return s_->config.gp.population; }
+RunStage Discovery::stage() const {
+  const auto kind = static_cast<RunStage::Kind>(s_->stage.load());
+  // In the generations, `done` is the evaluations so far (progress()).
+  const long done = kind == RunStage::Generations ? progress() : s_->stageDone.load();
+  return {kind, static_cast<int>(done), s_->stageTotal.load()};
+}
+
+const char* stageName(RunStage::Kind kind) {
+  switch (kind) {
+    case RunStage::Generations:
+      return "generations";
+    case RunStage::Validation:
+      return "validation";
+    case RunStage::Confirmation:
+      return "confirmation";
+  }
+  return "?";
+}
 
 }  // namespace gpfd::run

@@ -42,17 +42,29 @@ void EvolveText::runStarted(const run::Discovery& discovery, const std::string& 
       label, config.name, config.learner, config.env, config.gp.population, config.gp.generations,
       config.seed, dir));
   if (!o_.terminal) return;
-  // On a terminal, a status line shows the evaluations of the running generation.
+  // On a terminal, a status line shows the evaluations of the running generation, then the
+  // trainings of validation and confirmation, with the time the stage has taken so far.
   running_.store(true);
   status_ = std::jthread([this, &discovery, label] {
-    const auto start = std::chrono::steady_clock::now();
+    auto start = std::chrono::steady_clock::now();
+    auto kind = run::RunStage::Generations;
     while (running_.load()) {
       std::this_thread::sleep_for(std::chrono::milliseconds(500));
+      const auto stage = discovery.stage();
+      if (stage.kind != kind) {
+        kind = stage.kind;
+        start = std::chrono::steady_clock::now();
+      }
       const double elapsed =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      o_.out(fmt::format("\r\033[K  {}generation {}: {}/{} evaluated, {}", label,
-                         discovery.history().size(), discovery.progress(),
-                         discovery.populationSize(), formatDuration(elapsed)));
+      if (kind == run::RunStage::Generations) {
+        o_.out(fmt::format("\r\033[K  {}generation {}: {}/{} evaluated, {}", label,
+                           discovery.history().size(), stage.done, stage.total,
+                           formatDuration(elapsed)));
+      } else {
+        o_.out(fmt::format("\r\033[K  {}{}: {}/{} trainings done, {}", label, run::stageName(kind),
+                           stage.done, stage.total, formatDuration(elapsed)));
+      }
     }
   });
 }

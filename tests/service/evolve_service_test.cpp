@@ -138,6 +138,52 @@ TEST(EvolveService, AStoppedRunsFeaturesAreWhatTheLearnerSawAndSaySo) {
   EXPECT_NE(a, b);
 }
 
+// The stage a progress display reads (Discovery::stage): the generations with their evaluations,
+// then validation (every set on every validation seed), then the confirmation a look at a time.
+TEST(EvolveService, TheRunStageSaysWhatRunsAndHowFar) {
+  for (const int confirmSeeds : {0, 6}) {
+    const auto name = "service-stage-" + std::to_string(confirmSeeds);
+    const auto config = service::loadConfig(
+        tinyEvolveConfig(name, 5),
+        {"gp.generations=2", "validation.candidates=3", "validation.seeds=4",
+         "validation.confirm_seeds=" + std::to_string(confirmSeeds), "validation.confirm_looks=1"});
+    const auto discovery = run::Discovery::start(config, {freshDir(name), 1, kVersion, "", {}, 1});
+    std::vector<run::RunStage> seen;
+    std::vector<long> evaluated;
+    const std::atomic<bool> stop{false};
+    discovery->run(
+        [&](const run::GenerationRecord&) {
+          seen.push_back(discovery->stage());
+          evaluated.push_back(discovery->progress());
+        },
+        stop);
+    ASSERT_TRUE(discovery->finished());
+    ASSERT_EQ(seen.size(), 2U);
+    for (std::size_t g = 0; g < seen.size(); ++g) {
+      EXPECT_EQ(seen[g].kind, run::RunStage::Generations);
+      EXPECT_EQ(seen[g].total, 12);  // The population.
+      EXPECT_EQ(seen[g].done, evaluated[g]);
+      EXPECT_GT(seen[g].done, 0);
+    }
+    const auto end = discovery->stage();
+    const auto& validation = discovery->validation();
+    if (confirmSeeds == 0) {
+      EXPECT_EQ(end.kind, run::RunStage::Validation);
+      // The original variables and the hall of fame, each on the 4 validation seeds.
+      EXPECT_EQ(end.total, static_cast<int>(validation.sets.size()) * 4);
+      EXPECT_EQ(end.done, end.total);
+      EXPECT_STREQ(run::stageName(end.kind), "validation");
+    } else {
+      EXPECT_EQ(end.kind, run::RunStage::Confirmation);
+      const int sets = validation.confirmation.key.empty() ? 1 : 2;
+      EXPECT_EQ(end.total, sets * 6);
+      EXPECT_EQ(end.done, end.total);  // One look: every seed.
+      EXPECT_EQ(static_cast<int>(validation.confirmation.original.size()), 6);
+      EXPECT_STREQ(run::stageName(end.kind), "confirmation");
+    }
+  }
+}
+
 TEST(EvolveText, DurationsRoundToTheUnitShown) {
   EXPECT_EQ(service::formatDuration(45.2), "45s");
   EXPECT_EQ(service::formatDuration(89.6), "1m30s");

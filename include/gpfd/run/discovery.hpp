@@ -50,6 +50,18 @@ struct DiscoveryOptions {
 // neither a run nor a set is ever started over either.
 void refuseExistingRuns(const std::string& dir);
 
+// What a run is doing, for progress displays: its GP generations, the validation of the hall of
+// fame (after the last generation, and every validation.every generations), or the confirmation
+// of the winner. `done` of `total` trainings (validation: all at once; confirmation: a look at a
+// time, and a clear difference ends it early).
+struct RunStage {
+  enum Kind { Generations, Validation, Confirmation };
+  Kind kind = Generations;
+  int done = 0;
+  int total = 0;
+};
+const char* stageName(RunStage::Kind kind);
+
 class Discovery {
  public:
   // A fresh run in options.outDir, which must not already hold a run or a set of runs
@@ -82,6 +94,8 @@ class Discovery {
   // Evaluations completed in the current generation (for progress displays; any thread).
   long progress() const;
   int populationSize() const;
+  // The stage running now (any thread; its fields are read one at a time).
+  RunStage stage() const;
 
  private:
   struct State;
