@@ -98,6 +98,7 @@ void bindPythonEnvironments(nb::module_& m) {
         env::EnvInfo info;
         info.name = name;
         info.description = description;
+        info.batch = pythonVectorForm(name);  // Where gpfd.vector_source finds a vector form.
         info.make = [name](const Params&) -> std::unique_ptr<env::Environment> {
           nb::gil_scoped_acquire gil;
           nb::object adapter = nb::module_::import_("gpfd.user_env").attr("make_adapter")(name);
