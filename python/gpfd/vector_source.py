@@ -15,9 +15,9 @@ with one ``reset``, each lane seeded from its episode's own stream where the vec
 takes one seed per sub-environment (gpfd's ``GpfdVectorEnv``, ``SyncVectorEnv``,
 ``AsyncVectorEnv``, or ``VectorFactory(..., per_lane_seeds=True)``): lane l then gets the seed
 that the per-environment path gives ``reset(seed=...)``, and plays the same episode. Otherwise the
-vector environment gets one seed mixed from all lanes' seeds (EnvPool: at creation, since its
-seeds are fixed then): the same seeds give the same episodes, but not those of the
-per-environment path. Any autoreset mode works (gymnasium.vector.AutoresetMode): an episode is
+vector environment gets one seed mixed from all lanes' seeds (EnvPool, whose seeds are fixed when
+it is made: at its creation, once per fitness evaluation): the same seeds give the same episodes,
+but not those of the per-environment path. Any autoreset mode works (gymnasium.vector.AutoresetMode): an episode is
 booked up to the step that ends it and its lane retired, before any autoreset.
 
 Without a vector form, trials step one environment at a time in worker processes (user_env).
@@ -88,8 +88,10 @@ class GymnasiumSource(VectorSource):
 
 
 class EnvPoolSource(VectorSource):
-    """An EnvPool task: ``envpool.make_gymnasium(task, num_envs=N, batch_size=N, seed=s)``,
-    synchronous; a single environment is a pool of one."""
+    """An EnvPool task: ``envpool.make_gymnasium(task, num_envs=N, batch_size=N, seed=s,
+    num_threads=1, **kwargs)``, synchronous; a single environment is a pool of one, made anew at
+    each seeded reset. A pool is made once per batched form (one fitness evaluation's trials),
+    seeded from the first call's lanes, and its streams go on from reset to reset."""
 
     seeded_at_creation = True
     elapsed_key = "elapsed_step"
@@ -104,13 +106,11 @@ class EnvPoolSource(VectorSource):
     def make_vector(self, num_envs: int, seed: int) -> VectorEnv:
         import envpool
 
-        # EnvPool takes a 32-bit seed and gives sub-environment i seed + i.
+        # EnvPool takes a 32-bit seed and gives sub-environment i seed + i. One worker thread
+        # unless told otherwise: gpfd spreads its work over processes (threads=).
+        kwargs = {"num_threads": 1, **self.kwargs}
         return envpool.make_gymnasium(
-            self.task,
-            num_envs=num_envs,
-            batch_size=num_envs,
-            seed=seed % 2**31,
-            **self.kwargs,
+            self.task, num_envs=num_envs, batch_size=num_envs, seed=seed % 2**31, **kwargs
         )
 
 
@@ -262,7 +262,9 @@ class VectorAdapter:
         """Starts episodes in lanes 0..len(seeds)-1 (lane l from seeds[l]); returns every
         sub-environment's observation as float64 (N, d)."""
         lanes = len(seeds)
-        if self.envs is None or self.num_envs < lanes or self.source.seeded_at_creation:
+        if self.envs is None or self.num_envs < lanes:
+            # Seeded at creation (EnvPool): from the first call's lanes; its sub-environments'
+            # streams then go on from reset to reset.
             self._open(max(lanes, self.num_envs), _mixed_seed(seeds))
         assert self.envs is not None
         if self.source.seeded_at_creation:

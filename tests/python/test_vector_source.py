@@ -21,6 +21,7 @@ TINY: dict[str, Any] = {
     "learner.params.episodes": 4,
     "learner.params.max_episode_steps": 50,
     "fitness.trials": 2,
+    "fitness.state_sample": 16,
 }
 RAW2 = gpfd.FeatureSet.parse("x0\nx1\n", variables=["x0", "x1"])
 RAW4 = gpfd.FeatureSet.parse("x0\nx1\nx2\nx3\n", variables=["x0", "x1", "x2", "x3"])
@@ -207,7 +208,15 @@ def test_a_gymnasium_id_with_a_vector_entry_point_has_a_vector_form():
 
 def test_the_same_seed_gives_the_same_run_on_one_or_two_workers(tmp_path):
     common: dict[str, Any] = {"env": "gpfd/CartPole-v0", "seed": 2, "population": 6}
-    common |= {"generations": 1, "set": TINY, "env_kwargs": {"actions": "discrete"}}
+    small_validation = {
+        "validation.candidates": 2,
+        "validation.seeds": 2,
+        "validation.confirm_seeds": 3,
+        "validation.confirm_looks": 1,
+        "validation.confirm_params": {"updates": 3},
+    }
+    common |= {"generations": 1, "set": TINY | small_validation}
+    common["env_kwargs"] = {"actions": "discrete"}
     one = gpfd.evolve(**common, threads=1, out=tmp_path / "one")
     two = gpfd.evolve(**common, threads=2, out=tmp_path / "two")
     assert one.best is not None and two.best is not None
@@ -289,3 +298,38 @@ def test_a_vector_form_whose_masked_reset_resets_every_lane():
         r"on its own .*reset\(options=\{'reset_mask'",
     ):
         fitness(faulty("mask ignored", mode=AutoresetMode.DISABLED))
+
+
+class ElapsedToy(ToyVector):
+    """Counts each lane's steps in info["elapsed_step"], as EnvPool does; `fault="elapsed"` makes
+    lane 2 restart its count at vector step `at`, as a lane that reset on its own would."""
+
+    def step(self, actions):
+        obs, reward, terminated, truncated, info = super().step(actions)
+        elapsed = self.t.copy()
+        if self.fault == "elapsed" and self.steps == self.at:
+            elapsed[2] = 0
+        return obs, reward, terminated, truncated, {**info, "elapsed_step": elapsed}
+
+
+class CountingFactory(gpfd.VectorFactory):
+    elapsed_key = "elapsed_step"
+
+
+def test_a_step_count_off_gpfd_s_is_a_lane_that_reset_on_its_own():
+    assert fitness(CountingFactory(ElapsedToy)) == fitness(gpfd.VectorFactory(toy_vector))
+    with pytest.raises(
+        gpfd.EnvError,
+        match=r"lane 2 of its vector form reset on its own at vector "
+        r"step 2, step 2 of its episode.*info\['elapsed_step'\] says 0",
+    ):
+        fitness(CountingFactory(functools.partial(ElapsedToy, fault="elapsed", at=2)))
+
+
+def test_an_envpool_task_is_a_vector_form():
+    pytest.importorskip("envpool")
+    a = fitness("envpool/CartPole-v1", features=RAW4)
+    assert np.isfinite(a) and fitness("envpool/CartPole-v1", features=RAW4) == a
+    assert fitness("envpool/CartPole-v1", features=RAW4, seed=4) != a
+    with pytest.raises(gpfd.InputError, match="unknown EnvPool task 'CartPole-v9'"):
+        fitness("envpool/CartPole-v9", features=RAW4)
