@@ -17,8 +17,9 @@ takes one seed per sub-environment (gpfd's ``GpfdVectorEnv``, ``SyncVectorEnv``,
 that the per-environment path gives ``reset(seed=...)``, and plays the same episode. Otherwise the
 vector environment gets one seed mixed from all lanes' seeds (EnvPool, whose seeds are fixed when
 it is made: at its creation, once per fitness evaluation): the same seeds give the same episodes,
-but not those of the per-environment path. Any autoreset mode works (gymnasium.vector.AutoresetMode): an episode is
-booked up to the step that ends it and its lane retired, before any autoreset.
+but not those of the per-environment path. Any autoreset mode works
+(gymnasium.vector.AutoresetMode): an episode is booked up to the step that ends it and its lane
+retired, before any autoreset.
 
 Without a vector form, trials step one environment at a time in worker processes (user_env).
 """
