@@ -169,6 +169,15 @@ def fitness_cost(scale):
     ]
     if envpool_available():
         cases.append(("envpool/CartPole-v1", python("envpool/CartPole-v1")))
+    # gpfd's vector environment through its Python step (a VectorFactory is not stepped through
+    # the C++ engine the way its id is): the cost of gpfd's generic vector path.
+    gpfd_vec = functools.partial(_gpfd_vec, kwargs=discrete)
+    cases.append(
+        (
+            "gpfd/CartPole-v0 via Python's step",
+            python(gpfd.VectorFactory(gpfd_vec, per_lane_seeds=True)),
+        )
+    )
     print(
         "\n3. one fitness evaluation: 3 trials x 11 batches of 10 episodes, raw variables, "
         "policy gradient (cartpole-quick's learner); the cases interleaved"
@@ -185,6 +194,71 @@ def fitness_cost(scale):
     for name, _ in cases:
         seconds = statistics.median(times[name])
         print(f"{name:<36} {seconds * 1000:>9.1f} ms {seconds / base:>7.1f}x")
+    vector_step_floor(python_raw, settings, seeds)
+
+
+def _gpfd_vec(num_envs, kwargs):
+    return gym.make_vec("gpfd/CartPole-v0", num_envs=num_envs, **kwargs)
+
+
+class _Counting:
+    """make_vec's vector environment, its step calls counted."""
+
+    calls = 0
+
+    def __init__(self, make):
+        self.make = make
+
+    def __call__(self, num_envs):
+        envs = self.make(num_envs)
+        step = envs.step
+
+        def counted(actions):
+            _Counting.calls += 1
+            return step(actions)
+
+        envs.step = counted
+        return envs
+
+
+def vector_step_floor(features, settings, seeds):
+    """What the vector environments' own steps cost in one evaluation: its vector steps (counted
+    on Gymnasium's CartPole-v1 through a VectorFactory) times one bare step of 30 lanes."""
+    make = functools.partial(gym.make_vec, "CartPole-v1", vectorization_mode="vector_entry_point")
+    _Counting.calls = 0
+    for seed in seeds:
+        gpfd.fitness(features, env=gpfd.VectorFactory(_Counting(make)), set=settings, seed=seed)
+    steps = _Counting.calls / len(seeds)
+    makers = {"CartPole-v1 (vector_entry_point)": make}
+    if envpool_available():
+        import envpool
+
+        makers["EnvPool CartPole-v1, 1 thread"] = lambda n: envpool.make_gymnasium(
+            "CartPole-v1", num_envs=n, batch_size=n, num_threads=1, seed=0
+        )
+    print(
+        f"   {steps:.0f} vector steps per evaluation (3 trials x 10 episodes = 30 lanes); "
+        "a bare step of 30 lanes, and that many of them:"
+    )
+    actions = np.random.default_rng(0).integers(0, 2, size=(2000, 30))
+    for label, maker in makers.items():
+        envs = maker(30)
+        rate = vector_env_rate_of(envs, actions)
+        print(f"   {label:<34} {1e6 / rate:>7.1f} us {steps / rate * 1000:>8.1f} ms per evaluation")
+        envs.close()
+
+
+def vector_env_rate_of(envs, actions):
+    """Vector steps per CPU second through `actions` (median of REPEATS)."""
+
+    def measure():
+        envs.reset(seed=0)
+        start = time.process_time()
+        for a in actions:
+            envs.step(a)
+        return len(actions), time.process_time() - start
+
+    return median_rate(measure)
 
 
 def main():

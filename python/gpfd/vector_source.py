@@ -60,6 +60,10 @@ class VectorSource:
     def make_vector(self, num_envs: int, seed: int) -> VectorEnv:
         raise NotImplementedError
 
+    def seeds_lanes(self, envs: VectorEnv) -> bool:
+        """Whether ``envs`` (made by make_vector) takes one seed per sub-environment."""
+        return self.per_lane_seeds
+
 
 class GymnasiumSource(VectorSource):
     """A Gymnasium id: ``gymnasium.make`` for one environment, ``gymnasium.make_vec`` with its
@@ -72,6 +76,16 @@ class GymnasiumSource(VectorSource):
     def __call__(self) -> gym.Env:
         return gym.make(self.env_id, **self.kwargs)
 
+    # Equal for the same id and keywords: idle vector environments serve the next call's source.
+    def __eq__(self, other: object) -> bool:
+        return type(other) is GymnasiumSource and self._identity() == other._identity()
+
+    def __hash__(self) -> int:
+        return hash(self._identity())
+
+    def _identity(self) -> tuple[str, str]:
+        return self.env_id, repr(sorted(self.kwargs.items()))
+
     def has_vector(self) -> bool:
         try:
             return gym.spec(self.env_id).vector_entry_point is not None
@@ -79,13 +93,14 @@ class GymnasiumSource(VectorSource):
             return False
 
     def make_vector(self, num_envs: int, seed: int) -> VectorEnv:
-        envs = gym.make_vec(
+        return gym.make_vec(
             self.env_id, num_envs=num_envs, vectorization_mode="vector_entry_point", **self.kwargs
         )
+
+    def seeds_lanes(self, envs: VectorEnv) -> bool:
         from gpfd.vector import GpfdVectorEnv
 
-        self.per_lane_seeds = isinstance(envs, (GpfdVectorEnv, SyncVectorEnv, AsyncVectorEnv))
-        return envs
+        return isinstance(envs, (GpfdVectorEnv, SyncVectorEnv, AsyncVectorEnv))
 
 
 class EnvPoolSource(VectorSource):
@@ -123,23 +138,30 @@ class VectorFactory(VectorSource):
     ``SyncVectorEnv`` does; then each lane's episode is seeded from gpfd's own stream for it.
     Otherwise ``reset(seed=s)`` gets one seed for all.
 
-    Pass it as ``env=`` to gpfd.evolve or gpfd.fitness. A single environment, where gpfd needs
-    one (the redundancy filter's random walks), is lane 0 of ``make_vec(1)``.
+    make: where gpfd needs a single environment (the random walks that sample visited states),
+    ``make()``; without it, lane 0 of ``make_vec(1)``.
+
+    Pass it as ``env=`` to gpfd.evolve or gpfd.fitness.
     """
 
     def __init__(
-        self, make_vec: Callable[[int], VectorEnv], *, per_lane_seeds: bool = False
+        self,
+        make_vec: Callable[[int], VectorEnv],
+        *,
+        per_lane_seeds: bool = False,
+        make: Callable[[], gym.Env] | None = None,
     ) -> None:
         if not callable(make_vec):
             raise TypeError(f"make_vec must be callable, not {type(make_vec).__name__}")
         self.make_vec = make_vec
         self.per_lane_seeds = bool(per_lane_seeds)
+        self.make = make
         # gpfd.user_env names the environment python:<this> (the factory's name).
         target = make_vec.func if isinstance(make_vec, functools.partial) else make_vec
         self.__qualname__ = getattr(target, "__qualname__", type(target).__name__)
 
     def __call__(self) -> gym.Env:
-        return OneLaneEnv(self)
+        return self.make() if self.make is not None else OneLaneEnv(self)
 
     def make_vector(self, num_envs: int, seed: int) -> VectorEnv:
         return self.make_vec(num_envs)
@@ -159,7 +181,7 @@ class OneLaneEnv(gym.Env):
             self.envs.close()
             self.envs = self.source.make_vector(1, seed)
             seed = None
-        elif seed is not None and self.source.per_lane_seeds:
+        elif seed is not None and self.source.seeds_lanes(self.envs):
             obs, _ = self.envs.reset(seed=[seed], options=options)
             return obs[0], {}
         obs, _ = self.envs.reset(seed=seed, options=options)
@@ -220,6 +242,34 @@ def make_vector_adapter(
     return VectorAdapter(name, user_env._factories[name], state_dim, choices, low, high)
 
 
+def native_single(name: str, adapter: Any) -> tuple[Any, bool] | None:
+    """(engine, float32 actions) where the environment registered as `name` is one of gpfd's own,
+    made from its Gymnasium id by ``gymnasium.make`` with only the wrappers that adds by default
+    (order enforcing, the passive checker, which change nothing): its C++ engine (EnvBatch), which
+    C++ then resets and steps as GpfdEnv does, without Python. None for any other (asked by C++
+    for each instance)."""
+    from gymnasium.wrappers import OrderEnforcing, PassiveEnvChecker
+
+    from gpfd import user_env
+    from gpfd.envs import GpfdEnv
+
+    if not isinstance(user_env._factories.get(name), GymnasiumSource):
+        return None
+    env = adapter.env
+    while type(env) in (OrderEnforcing, PassiveEnvChecker):
+        env = env.env
+    if type(env) is not GpfdEnv:
+        return None
+    return env._core, adapter.action_kind == "continuous" and adapter._dtype == np.float32
+
+
+# Vector environments that a closed adapter left, by (name, source, num_envs), for the next one:
+# making one costs more than a short fitness evaluation's resets. Reused only where every reset
+# reseeds what the lanes play (not EnvPool, seeded at creation), so that reuse changes nothing.
+_idle: dict[tuple[str, VectorSource, int], list[VectorEnv]] = {}
+_IDLE_MAX = 4  # Per key: the lockstep players alive at once in one process.
+
+
 def _mixed_seed(seeds: Sequence[int]) -> int:
     """One seed >= 0 from all lanes' seeds (for a vector environment seeded as a whole)."""
     state = np.random.SeedSequence([int(s) for s in seeds]).generate_state(1, np.uint64)
@@ -252,6 +302,7 @@ class VectorAdapter:
         self.start = 0  # A Discrete space's first action.
         self.resets_ended = False  # Autoreset disabled: ended sub-environments need a reset.
         self.elapsed_key = source.elapsed_key
+        self.per_lane_seeds = False  # Its vector environment takes one seed per sub-environment.
         self.step_function: Callable[..., Any] | None = None
         # gpfd's own vector environment: its C++ engine, which C++ steps without Python.
         self.native_engine: Any = None
@@ -270,7 +321,7 @@ class VectorAdapter:
         assert self.envs is not None
         if self.source.seeded_at_creation:
             seed: Any = None
-        elif self.source.per_lane_seeds:
+        elif self.per_lane_seeds:
             seed = [int(s) for s in seeds] + [None] * (self.num_envs - lanes)
         else:
             seed = _mixed_seed(seeds)
@@ -379,7 +430,11 @@ class VectorAdapter:
 
     def close(self) -> None:
         if self.envs is not None:
-            self.envs.close()
+            idle = _idle.setdefault(self._key(self.num_envs), [])
+            if self.source.seeded_at_creation or len(idle) >= _IDLE_MAX:
+                self.envs.close()
+            else:
+                idle.append(self.envs)
             self.envs = None
             self.native_engine = None
 
@@ -390,23 +445,33 @@ class VectorAdapter:
 
         return EnvError(f"{self.name}: {message}")
 
+    def _key(self, num_envs: int) -> tuple[str, VectorSource, int]:
+        return (self.name, self.source, num_envs)
+
     def _open(self, num_envs: int, seed: int) -> None:
         self.close()
-        try:
-            envs = self.source.make_vector(num_envs, seed)
-        except Exception as e:
-            raise self._error(
-                f"making its vector form of {num_envs} lanes raised {type(e).__name__}: {e}"
-            ) from e
-        self._check_spaces(envs, num_envs)
+        idle = _idle.get(self._key(num_envs))
+        if idle and not self.source.seeded_at_creation:
+            envs = idle.pop()
+        else:
+            try:
+                envs = self.source.make_vector(num_envs, seed)
+            except Exception as e:
+                raise self._error(
+                    f"making its vector form of {num_envs} lanes raised {type(e).__name__}: {e}"
+                ) from e
+            self._check_spaces(envs, num_envs)
         mode = AutoresetMode(envs.metadata.get("autoreset_mode", AutoresetMode.NEXT_STEP))
         self.envs = envs
         self.num_envs = num_envs
+        self.per_lane_seeds = self.source.seeds_lanes(envs)
         self.resets_ended = mode == AutoresetMode.DISABLED
         self.step_function = envs.step
         from gpfd.vector import GpfdVectorEnv
 
-        self.native_engine = envs._core if type(envs) is GpfdVectorEnv else None
+        # Made from a gpfd id (not a VectorFactory, whose make_vec may be anything).
+        native = type(envs) is GpfdVectorEnv and isinstance(self.source, GymnasiumSource)
+        self.native_engine = envs._core if native else None
         space = envs.single_action_space
         if isinstance(space, spaces.Discrete):
             self.start = int(space.start)

@@ -105,6 +105,32 @@ class ReadView {
   std::int64_t rowStride_ = 0, colStride_ = 0;
 };
 
+// What the batched form needs of its scalar environment: its name, variables and action space
+// (BatchEnvironment::scalar). Its lanes live in the vector environment, so it plays no episode;
+// unlike a copy of the Python environment, it makes no Gymnasium environment.
+class ScalarShape final : public env::Environment {
+ public:
+  explicit ScalarShape(const env::Environment& of)
+      : name_(of.name()), params_(of.params()), names_(of.stateNames()), space_(of.actionSpace()) {}
+  std::string name() const override { return name_; }
+  Params params() const override { return params_; }
+  const std::vector<std::string>& stateNames() const override { return names_; }
+  env::ActionSpace actionSpace() const override { return space_; }
+  void reset(Rng&) override { refuse(); }
+  std::span<const double> state() const override { return {}; }
+  void setState(std::span<const double>) override { refuse(); }
+  env::StepResult step(std::span<const double>) override { refuse(); }
+
+ private:
+  [[noreturn]] static void refuse() {
+    throw std::logic_error("the vector form's scalar shape plays no episode");
+  }
+  std::string name_;
+  Params params_;
+  std::vector<std::string> names_;
+  env::ActionSpace space_;
+};
+
 class PythonVectorBatch final : public env::BatchEnvironment {
  public:
   // `adapter` is a gpfd.vector_source.VectorAdapter. Called with the GIL held.
@@ -256,7 +282,10 @@ class PythonVectorBatch final : public env::BatchEnvironment {
     const std::size_t components = actionComponents();
     for (std::size_t l = 0; l < io.lanes; ++l) {
       for (std::size_t c = 0; c < components; ++c) {
-        native_->actions[physical_[l] * components + c] = io.action[c * io.stride + l];
+        const double a = io.action[c * io.stride + l];
+        // As the action array of the space's dtype would hold it.
+        native_->actions[physical_[l] * components + c] =
+            actionKind_ == ActionKind::F32 ? static_cast<float>(a) : a;
       }
     }
     NativeBuffers& n = *native_;
@@ -438,8 +467,7 @@ env::BatchForm pythonVectorForm(const std::string& name) {
   };
   form.make = [name](const env::Environment& prototype,
                      env::BatchIsa isa) -> std::unique_ptr<env::BatchEnvironment> {
-    auto scalar = prototype.freshCopy();
-    if (!scalar) throw std::logic_error(name + ": a copy of the environment failed");
+    auto scalar = std::make_unique<ScalarShape>(prototype);
     const env::ActionSpace space = scalar->actionSpace();
     const int choices = space.continuous() ? 0 : space.choices;
     nb::gil_scoped_acquire gil;
