@@ -29,7 +29,7 @@ from __future__ import annotations
 import functools
 import math
 from collections.abc import Callable, Sequence
-from typing import Any
+from typing import Any, cast
 
 import gymnasium as gym
 import numpy as np
@@ -125,9 +125,10 @@ class EnvPoolSource(VectorSource):
         # EnvPool takes a 32-bit seed and gives sub-environment i seed + i. One worker thread
         # unless told otherwise: gpfd spreads its work over processes (threads=).
         kwargs = {"num_threads": 1, **self.kwargs}
-        return envpool.make_gymnasium(
+        envs: Any = envpool.make_gymnasium(
             self.task, num_envs=num_envs, batch_size=num_envs, seed=seed % 2**31, **kwargs
         )
+        return envs
 
 
 class VectorFactory(VectorSource):
@@ -182,7 +183,7 @@ class OneLaneEnv(gym.Env):
             self.envs = self.source.make_vector(1, seed)
             seed = None
         elif seed is not None and self.source.seeds_lanes(self.envs):
-            obs, _ = self.envs.reset(seed=[seed], options=options)
+            obs, _ = self.envs.reset(seed=cast(Any, [seed]), options=options)
             return obs[0], {}
         obs, _ = self.envs.reset(seed=seed, options=options)
         return obs[0], {}
@@ -239,7 +240,9 @@ def make_vector_adapter(
     so many; else a Box from `low` to `high`)."""
     from gpfd import user_env
 
-    return VectorAdapter(name, user_env._factories[name], state_dim, choices, low, high)
+    source = user_env._factories[name]
+    assert isinstance(source, VectorSource)
+    return VectorAdapter(name, source, state_dim, choices, low, high)
 
 
 def native_single(name: str, adapter: Any) -> tuple[Any, bool] | None:
@@ -471,7 +474,7 @@ class VectorAdapter:
 
         # Made from a gpfd id (not a VectorFactory, whose make_vec may be anything).
         native = type(envs) is GpfdVectorEnv and isinstance(self.source, GymnasiumSource)
-        self.native_engine = envs._core if native else None
+        self.native_engine = cast(Any, envs)._core if native else None
         space = envs.single_action_space
         if isinstance(space, spaces.Discrete):
             self.start = int(space.start)

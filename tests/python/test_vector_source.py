@@ -178,7 +178,9 @@ def test_a_vector_form_seeded_as_a_whole_gives_the_same_episodes_in_every_mode()
     ],
     ids=["discrete", "continuous"],
 )
-def test_gpfd_cartpole_through_its_vector_form_equals_the_per_environment_path(kwargs):
+def test_gpfd_cartpole_through_its_vector_form_equals_the_per_environment_path(
+    kwargs: dict[str, Any],
+):
     per_env = functools.partial(gym.make, "gpfd/CartPole-v0", **kwargs)
     for seed in (1, 2):
         expected = fitness(per_env, seed=seed, features=RAW4)
@@ -188,7 +190,7 @@ def test_gpfd_cartpole_through_its_vector_form_equals_the_per_environment_path(k
 
 
 def test_gpfd_acrobot_through_its_vector_form_equals_the_per_environment_path():
-    kwargs = {"actions": "discrete"}
+    kwargs: dict[str, Any] = {"actions": "discrete"}
     raw = gpfd.FeatureSet.parse(
         "\n".join(f"x{i}" for i in range(4)) + "\n", variables=[f"x{i}" for i in range(4)]
     )
@@ -264,7 +266,11 @@ def test_a_vector_form_that_lies_about_its_observation_space():
 
 
 def test_a_vector_entry_point_whose_spaces_differ_from_the_single_environment():
-    gym.register("gpfd-test/Lying-v0", entry_point=Toy, vector_entry_point=LyingVector)
+    gym.register(
+        "gpfd-test/Lying-v0",
+        entry_point=Toy,  # type: ignore[arg-type]
+        vector_entry_point=LyingVector,  # type: ignore[arg-type]
+    )
     try:
         with pytest.raises(
             gpfd.EnvError,
