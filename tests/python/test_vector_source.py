@@ -238,31 +238,33 @@ def faulty(fault, **kwargs):
     return gpfd.VectorFactory(functools.partial(toy_vector, fault=fault, **kwargs))
 
 
-def test_a_vector_form_that_raises_mid_step():
-    with pytest.raises(
-        gpfd.EnvError,
-        match=r"python:toy_vector: step of its vector form raised "
-        r"RuntimeError: the simulator crashed \(vector step 1, lanes 0-7",
-    ):
-        fitness(faulty("raises", at=1))
-
-
-def test_a_vector_form_that_returns_nan():
-    with pytest.raises(
-        gpfd.EnvError,
-        match=r"python:toy_vector: the observation of lane 1 after "
-        r"step 2 of its episode \(vector step 2\) holds nan at index 0",
-    ):
-        fitness(faulty("nan", at=2))
-
-
-def test_a_vector_form_that_lies_about_its_observation_space():
-    with pytest.raises(
-        gpfd.EnvError,
-        match=r"python:toy_vector: its vector form lies about its "
-        r"spaces: step returned observations of shape \(8, 3\) at vector step 1",
-    ):
-        fitness(faulty("shape"))
+@pytest.mark.parametrize(
+    "fault, at, message",
+    [
+        (  # Raises mid-step.
+            "raises",
+            1,
+            r"step of its vector form raised RuntimeError: the simulator crashed \(vector step 1, "
+            r"lanes 0-7",
+        ),
+        (  # Returns NaN.
+            "nan",
+            2,
+            r"the observation of lane 1 after step 2 of its episode \(vector step 2\) holds nan "
+            r"at index 0",
+        ),
+        (  # Lies about its observation space.
+            "shape",
+            1,
+            r"its vector form lies about its spaces: step returned observations of shape \(8, 3\) "
+            r"at vector step 1",
+        ),
+    ],
+    ids=["raises", "nan", "shape"],
+)
+def test_a_misbehaving_vector_form_is_an_env_error_naming_call_step_and_lane(fault, at, message):
+    with pytest.raises(gpfd.EnvError, match="python:toy_vector: " + message):
+        fitness(faulty(fault, at=at))
 
 
 def test_a_vector_entry_point_whose_spaces_differ_from_the_single_environment():
