@@ -2,7 +2,7 @@
 """gpfd from Python against Gymnasium and NumPy, side by side in one run (docs/python.md).
 
 Usage, with the package installed (scripts/test installs it in .venv):
-  .venv/bin/python bench/python_speed.py [--quick]
+  .venv/bin/python bench/python_speed.py [--quick] [--sections 123]
 
 1. Environment steps per second: one environment through gymnasium.make (gpfd's vs Gymnasium's
    CartPole-v1 and Acrobot-v1, the same tasks), and vector environments of N = 64: gpfd's
@@ -11,13 +11,15 @@ Usage, with the package installed (scripts/test installs it in .venv):
 2. FeatureSet throughput (states per second) for N = 1 and N = 4096 states per call, against the
    same features as the NumPy function of `gpfd features export --format python`.
 3. The cost of one fitness evaluation (GP's short learning trials) on cart-pole built in (stepped
-   in C++), on gpfd's cart-pole stepped in Python through Gymnasium (gpfd/CartPole-v0), and on
-   Gymnasium's CartPole-v1.
+   in C++), on gpfd's cart-pole stepped in Python through Gymnasium (gpfd/CartPole-v0) and on
+   Gymnasium's CartPole-v1, each one environment at a time and through its vector form (all
+   lanes in one vector step), and on EnvPool's CartPole-v1 where EnvPool is installed.
 Every figure is the median of 3 repetitions, timed in CPU seconds of this process (everything
 here runs on one thread), so that other jobs on the machine disturb it less than wall time.
 """
 
 import argparse
+import functools
 import statistics
 import time
 import warnings
@@ -135,53 +137,134 @@ def feature_sets(scale):
         print(f"{n:<16} {a:>14,.0f} {b:>14,.0f} {a / b:>6.1f}x")
 
 
+def envpool_available():
+    try:
+        import envpool  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
 def fitness_cost(scale):
     settings = {"learner.params.updates": 10, "learner.params.episodes": 10, "fitness.trials": 3}
     builtin = {**settings, "env.params.actions": "discrete", "env.params.max_steps": 500}
     raw = gpfd.FeatureSet.parse("x\ndx\nth\ndth\n", env="cartpole")
     python_raw = gpfd.FeatureSet.parse("x0\nx1\nx2\nx3\n", variables=["x0", "x1", "x2", "x3"])
     seeds = range(1, 1 + 3 * scale)
+    discrete = {"actions": "discrete", "max_steps": 500}
 
-    def per_evaluation(run):
-        def measure():
-            start = time.process_time()
-            for seed in seeds:
-                run(seed)
-            return len(seeds), time.process_time() - start
+    def python(env, **kwargs):
+        return lambda s: gpfd.fitness(python_raw, env=env, set=settings, seed=s, **kwargs)
 
-        return 1.0 / median_rate(measure)
-
+    # A callable (here gymnasium.make of the id) has no vector form: one environment at a time.
     cases = [
         ("cartpole built in (C++)", lambda s: gpfd.fitness(raw, set=builtin, seed=s)),
         (
-            "gpfd/CartPole-v0 stepped in Python",
-            lambda s: gpfd.fitness(
-                python_raw,
-                env="gpfd/CartPole-v0",
-                set=settings,
-                seed=s,
-                env_kwargs={"actions": "discrete", "max_steps": 500},
-            ),
+            "gpfd/CartPole-v0, one env at a time",
+            python(functools.partial(gym.make, "gpfd/CartPole-v0", **discrete)),
         ),
-        (
-            "Gymnasium CartPole-v1 (Python)",
-            lambda s: gpfd.fitness(python_raw, env="CartPole-v1", set=settings, seed=s),
-        ),
+        ("gpfd/CartPole-v0, its vector form", python("gpfd/CartPole-v0", env_kwargs=discrete)),
+        ("CartPole-v1, one env at a time", python(functools.partial(gym.make, "CartPole-v1"))),
+        ("CartPole-v1, its vector form", python("CartPole-v1")),
     ]
+    if envpool_available():
+        cases.append(("envpool/CartPole-v1", python("envpool/CartPole-v1")))
+    # gpfd's vector environment through its Python step (a VectorFactory is not stepped through
+    # the C++ engine the way its id is): the cost of gpfd's generic vector path.
+    gpfd_vec = functools.partial(_gpfd_vec, kwargs=discrete)
+    cases.append(
+        (
+            "gpfd/CartPole-v0 via Python's step",
+            python(gpfd.VectorFactory(gpfd_vec, per_lane_seeds=True)),
+        )
+    )
     print(
         "\n3. one fitness evaluation: 3 trials x 11 batches of 10 episodes, raw variables, "
-        "policy gradient (cartpole-quick's learner)"
+        "policy gradient (cartpole-quick's learner); the cases interleaved"
+        + ("" if envpool_available() else "; EnvPool not installed")
     )
-    base = None
-    for name, run in cases:
-        seconds = per_evaluation(run)
-        base = base or seconds
+    times = {name: [] for name, _ in cases}
+    for _ in range(REPEATS):
+        for name, run in cases:
+            start = time.process_time()
+            for seed in seeds:
+                run(seed)
+            times[name].append((time.process_time() - start) / len(seeds))
+    base = statistics.median(times[cases[0][0]])
+    for name, _ in cases:
+        seconds = statistics.median(times[name])
         print(f"{name:<36} {seconds * 1000:>9.1f} ms {seconds / base:>7.1f}x")
+    vector_step_floor(python_raw, settings, seeds)
+
+
+def _gpfd_vec(num_envs, kwargs):
+    return gym.make_vec("gpfd/CartPole-v0", num_envs=num_envs, **kwargs)
+
+
+class _Counting:
+    """make_vec's vector environment, its step calls counted."""
+
+    calls = 0
+
+    def __init__(self, make):
+        self.make = make
+
+    def __call__(self, num_envs):
+        envs = self.make(num_envs)
+        step = envs.step
+
+        def counted(actions):
+            _Counting.calls += 1
+            return step(actions)
+
+        envs.step = counted
+        return envs
+
+
+def vector_step_floor(features, settings, seeds):
+    """What the vector environments' own steps cost in one evaluation: its vector steps (counted
+    on Gymnasium's CartPole-v1 through a VectorFactory) times one bare step of 30 lanes."""
+    make = functools.partial(gym.make_vec, "CartPole-v1", vectorization_mode="vector_entry_point")
+    _Counting.calls = 0
+    for seed in seeds:
+        gpfd.fitness(features, env=gpfd.VectorFactory(_Counting(make)), set=settings, seed=seed)
+    steps = _Counting.calls / len(seeds)
+    makers = {"CartPole-v1 (vector_entry_point)": make}
+    if envpool_available():
+        import envpool
+
+        makers["EnvPool CartPole-v1, 1 thread"] = lambda n: envpool.make_gymnasium(
+            "CartPole-v1", num_envs=n, batch_size=n, num_threads=1, seed=0
+        )
+    print(
+        f"   {steps:.0f} vector steps per evaluation (3 trials x 10 episodes = 30 lanes); "
+        "a bare step of 30 lanes, and that many of them:"
+    )
+    actions = np.random.default_rng(0).integers(0, 2, size=(2000, 30))
+    for label, maker in makers.items():
+        envs = maker(30)
+        rate = vector_env_rate_of(envs, actions)
+        print(f"   {label:<34} {1e6 / rate:>7.1f} us {steps / rate * 1000:>8.1f} ms per evaluation")
+        envs.close()
+
+
+def vector_env_rate_of(envs, actions):
+    """Vector steps per CPU second through `actions` (median of REPEATS)."""
+
+    def measure():
+        envs.reset(seed=0)
+        start = time.process_time()
+        for a in actions:
+            envs.step(a)
+        return len(actions), time.process_time() - start
+
+    return median_rate(measure)
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="a tenth of the work (a smoke test)")
+    parser.add_argument("--sections", default="123", help="which sections to run (default 123)")
     args = parser.parse_args()
     warnings.filterwarnings("ignore")
     scale = 1 if args.quick else 10
@@ -189,9 +272,12 @@ def main():
         f"gpfd {gpfd.__version__}, Gymnasium {gym.__version__}, NumPy {np.__version__}; "
         f"median of {REPEATS}, CPU time\n"
     )
-    environments(scale)
-    feature_sets(scale)
-    fitness_cost(max(1, scale // 5))
+    if "1" in args.sections:
+        environments(scale)
+    if "2" in args.sections:
+        feature_sets(scale)
+    if "3" in args.sections:
+        fitness_cost(max(1, scale // 5))
 
 
 if __name__ == "__main__":

@@ -8,7 +8,8 @@ The core is gpfd's C++ library; this package is a thin front over it:
 - ``wrappers.FeatureObservation``: a Gymnasium wrapper that shows an agent the features.
 - ``evolve``, ``fitness``, ``assess``, ``load_run``: discovery, GP's fitness, the test protocol and
   results directories, as ``gpfd evolve`` and ``gpfd assess`` run them; ``evolve`` also runs on any
-  Gymnasium environment with a Box observation space, stepped in Python.
+  Gymnasium environment with a Box observation space, stepped in Python (all lanes of its vector
+  form at once where it has one: ``VectorFactory``, gpfd.vector_source).
 
 docs/python.md in gpfd's repository is the guide.
 """
@@ -18,6 +19,7 @@ from gpfd import wrappers
 from gpfd._core import FeatureSet, InputError, __version__
 from gpfd.discovery import Run, assess, builtin_configs, evolve, fitness, load_run
 from gpfd.user_env import EnvError
+from gpfd.vector_source import VectorFactory
 
 _envs.register_all()
 
@@ -26,6 +28,7 @@ __all__ = [
     "FeatureSet",
     "InputError",
     "Run",
+    "VectorFactory",
     "__version__",
     "assess",
     "builtin_configs",

@@ -23,7 +23,7 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
-from gpfd import _core
+from gpfd import _core, vector_source
 
 if TYPE_CHECKING:
     from multiprocessing.pool import Pool
@@ -56,8 +56,11 @@ def state_names(space: spaces.Space) -> list[str]:
 def resolve(
     env: str | Callable[..., gym.Env], env_kwargs: dict[str, Any] | None
 ) -> tuple[str, Callable[[], gym.Env]]:
-    """(registry name, factory) for a Gymnasium id or a callable returning an environment."""
+    """(registry name, factory) for a Gymnasium id, an EnvPool task ("envpool/TASK") or a
+    callable returning an environment; the factory of an id is a vector_source.VectorSource."""
     if isinstance(env, str):
+        if env.startswith((vector_source.ENVPOOL_PREFIX, "envpool:")):
+            return vector_source.envpool_source(env, env_kwargs)
         if ":" not in env:  # "module:Id" imports the module first: gymnasium.make checks it.
             try:
                 gym.spec(env)
@@ -67,11 +70,13 @@ def resolve(
                     f"unknown environment {env!r}: neither gpfd's ({builtin}) nor a Gymnasium "
                     f"id ({e})"
                 ) from None
-        return env, functools.partial(gym.make, env, **(env_kwargs or {}))
+        return env, vector_source.GymnasiumSource(env, env_kwargs)
     if not callable(env):
         raise TypeError(
             f"env must be a name, a Gymnasium id or a callable, not {type(env).__name__}"
         )
+    if env_kwargs and isinstance(env, vector_source.VectorFactory):
+        raise TypeError("env_kwargs with a VectorFactory: give them to its make_vec")
     if env_kwargs:
         env = functools.partial(env, **env_kwargs)
     target = env.func if isinstance(env, functools.partial) else env

@@ -37,6 +37,10 @@ inline nb::module_ numpy() { return nb::module_::import_("numpy"); }
 // bool as true/false, int and float in shortest round-trip form. TypeError for anything else.
 Params paramsFromDict(const nb::dict& values, const std::string& where);
 
+// The batched form of the environment registered from Python as `name`: its vector form, where
+// gpfd.vector_source finds one (python_vector_environment.cpp).
+env::BatchForm pythonVectorForm(const std::string& name);
+
 void bindFeatureSet(nb::module_& m);
 void bindEnvironments(nb::module_& m);
 // After bindEnvironments: pickling and Tetris' board on EnvBatch (env_state_bindings.cpp).

@@ -1,14 +1,17 @@
 // python: a Gymnasium environment stepped in Python, as a gpfd environment, so that discovery and
 // assessment run on it unchanged. The Python side (gpfd.user_env.Adapter) checks the spaces and
 // every observation and turns the environment's exceptions into clear errors; this side holds the
-// GIL only while it calls Python.
+// GIL only while it calls Python. gpfd's own environments made from their Gymnasium ids step
+// through their C++ engine directly (gpfd.vector_source.native_single).
 #include <fmt/format.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
+#include <cmath>
 #include <vector>
 
 #include "bindings.hpp"
+#include "env_batch.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::python {
@@ -37,9 +40,11 @@ class PythonEnvironment final : public env::Environment {
       }
     }
     action_ = nb::cast(newArray<double>({space_.components}));
+    bindNative();
   }
   ~PythonEnvironment() override {
     nb::gil_scoped_acquire gil;
+    keepNative_.reset();
     action_.reset();
     adapter_.reset();
   }
@@ -51,6 +56,13 @@ class PythonEnvironment final : public env::Environment {
 
   void reset(Rng& rng) override {
     const std::uint64_t seed = rng() >> 1;  // Gymnasium takes seeds >= 0.
+    if (native_ != nullptr) {
+      // What GpfdEnv.reset(seed=seed) does (gpfd.envs.seed64: the seed's low 64 bits).
+      native_->seed(0, seed);
+      native_->reset(nullptr, state_.data());
+      checkNative("reset");
+      return;
+    }
     nb::gil_scoped_acquire gil;
     copyState(adapter_.attr("reset")(seed));
   }
@@ -62,6 +74,17 @@ class PythonEnvironment final : public env::Environment {
   }
 
   env::StepResult step(std::span<const double> action) override {
+    if (native_ != nullptr) {
+      // What GpfdEnv.step does through the adapter: the action as the space's dtype.
+      for (std::size_t c = 0; c < action.size(); ++c) {
+        nativeAction_[c] = roundToFloat_ ? static_cast<float>(action[c]) : action[c];
+      }
+      double reward = 0.0;
+      bool terminated = false, truncated = false;
+      native_->step(nativeAction_.data(), {state_.data(), &reward, &terminated, &truncated});
+      checkNative("step");
+      return {reward, terminated, truncated};
+    }
     nb::gil_scoped_acquire gil;
     auto buffer = nb::cast<nb::ndarray<double, nb::c_contig>>(action_);
     std::copy(action.begin(), action.end(), buffer.data());
@@ -71,6 +94,30 @@ class PythonEnvironment final : public env::Environment {
   }
 
  private:
+  // gpfd's own environment made from its Gymnasium id (gpfd.vector_source.native_single): its
+  // C++ engine steps without Python, as GpfdEnv's reset and step call it.
+  void bindNative() {
+    const nb::object native =
+        nb::module_::import_("gpfd.vector_source").attr("native_single")(name_, adapter_);
+    if (native.is_none()) return;
+    native_ = nb::cast<EnvBatch*>(native[0]);
+    roundToFloat_ = nb::cast<bool>(native[1]);
+    keepNative_ = native;
+    nativeAction_.assign(space_.components, 0.0);
+  }
+
+  // The adapter's check of every observation, for the native path: a non-finite one raises there.
+  void checkNative(const char* call) {
+    for (const double v : state_) {
+      if (std::isfinite(v)) continue;
+      nb::gil_scoped_acquire gil;
+      auto obs = newArray<double>({state_.size()});
+      std::copy(state_.begin(), state_.end(), obs.data());
+      adapter_.attr("_observation")(obs, call);
+      return;
+    }
+  }
+
   // The adapter has checked the observation: float64, finite, state_dim values.
   void copyState(nb::handle obs) {
     const auto array = nb::cast<ReadArray>(obs);
@@ -79,6 +126,10 @@ class PythonEnvironment final : public env::Environment {
 
   std::string name_;
   nb::object adapter_;
+  EnvBatch* native_ = nullptr;  // Owned by keepNative_'s environment.
+  nb::object keepNative_;
+  bool roundToFloat_ = false;  // A float32 action space: the adapter would round the action.
+  std::vector<double> nativeAction_;
   nb::object action_;  // The float64 array the adapter receives the action in.
   std::vector<std::string> names_;
   std::vector<double> state_;
@@ -98,6 +149,7 @@ void bindPythonEnvironments(nb::module_& m) {
         env::EnvInfo info;
         info.name = name;
         info.description = description;
+        info.batch = pythonVectorForm(name);  // Where gpfd.vector_source finds a vector form.
         info.make = [name](const Params&) -> std::unique_ptr<env::Environment> {
           nb::gil_scoped_acquire gil;
           nb::object adapter = nb::module_::import_("gpfd.user_env").attr("make_adapter")(name);

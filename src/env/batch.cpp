@@ -60,6 +60,10 @@ void BatchEnvironment::reset(Rng& rng, const BatchBuffers& io, std::size_t lane)
   io.elapsed[lane] = 0;
 }
 
+void BatchEnvironment::resetAll(std::span<Rng> rngs, const BatchBuffers& io) {
+  for (std::size_t lane = 0; lane < rngs.size(); ++lane) reset(rngs[lane], io, lane);
+}
+
 bool hasBatchEnvironment(const Environment& env) { return formOf(env) != nullptr; }
 
 std::unique_ptr<BatchEnvironment> makeBatchEnvironment(const Environment& env, BatchIsa isa) {

@@ -53,7 +53,8 @@ class LockstepPlayer final : public Player {
         broken_(stride_, 0),
         episode_(stride_, 0),
         run_(stride_, 0),
-        rngs_(stride_) {
+        rngs_(stride_),
+        starts_(stride_) {
     io_.scratchTail = true;
     lanes_.stride = stride_;
     lanes_.avx2 = batch_->usesAvx2();
@@ -65,10 +66,10 @@ class LockstepPlayer final : public Player {
     const std::size_t n = tasks.size();
     prepare(out, n, static_cast<Eigen::Index>(parameters_), rawDim_, sampling, normalise_);
     if (sampling) std::fill(eligibility_.begin(), eligibility_.end(), 0.0);
+    for (std::size_t e = 0; e < n; ++e) starts_[e] = Rng(tasks[e].seed);
+    batch_->resetAll(std::span(starts_.data(), n), io_);
     for (std::size_t e = 0; e < n; ++e) {
-      Rng rng(tasks[e].seed);
-      batch_->reset(rng, io_, e);
-      rngs_.set(e, rng);
+      rngs_.set(e, starts_[e]);
       episode_[e] = e;
       weight_[e] = 1.0;
       takeRun(e, tasks[e].run);
@@ -272,6 +273,7 @@ class LockstepPlayer final : public Player {
   std::vector<std::size_t> episode_;  // The episode (index into the call's tasks) of each lane.
   std::vector<std::size_t> run_;      // Its run.
   RngLanes rngs_;                     // Each lane's episode's stream.
+  std::vector<Rng> starts_;           // The streams of a call's episodes as their resets begin.
 };
 
 }  // namespace

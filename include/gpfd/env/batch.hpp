@@ -18,6 +18,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -84,6 +85,11 @@ class BatchEnvironment {
   // Starts an episode in lane `lane`: its state is drawn from `rng` exactly as scalar().reset
   // draws it, and elapsed[lane] = 0.
   virtual void reset(Rng& rng, const BatchBuffers& io, std::size_t lane);
+  // Starts an episode in every lane l < rngs.size() (<= io.stride) as reset(rngs[l], io, l) does,
+  // in lane order; whatever episodes the lanes held before are dropped. The lockstep player
+  // starts each call's episodes through it, so that a form whose lanes reset together (a Python
+  // vector environment: one reset call for all) may. The default calls reset() lane by lane.
+  virtual void resetAll(std::span<Rng> rngs, const BatchBuffers& io);
   // One step of every lane. Throws InputError (naming the lane) for a discrete action that is not
   // one of the choices, before any lane moves; continuous actions are clipped, NaN taken as 0.
   virtual void step(const BatchBuffers& io) const = 0;
