@@ -2,13 +2,21 @@
 
 #include <mpi.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <stdexcept>
+
+#include "finalize_watchdog.hpp"
 
 namespace gpfd::mpi {
 namespace {
 
 Session* live = nullptr;
+// Created before MPI_Init (the sockets MPI opens are the ones made after it).
+const FinalizeWatchdog* watchdog = nullptr;
+
+// How long MPI_Finalize may take before the watchdog steps in; a normal one takes milliseconds.
+constexpr std::chrono::milliseconds kFinalizePatience{3000};
 
 }  // namespace
 
@@ -21,6 +29,8 @@ bool Session::launchedByProcessManager() {
 
 Session::Session(int& argc, char**& argv) {
   if (live != nullptr) throw std::logic_error("only one MPI session per process");
+  static const FinalizeWatchdog beforeInit;
+  watchdog = &beforeInit;
   int provided = 0;
   if (MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS) {
     throw std::runtime_error("MPI_Init_thread failed");
@@ -54,7 +64,11 @@ Session::Session(int& argc, char**& argv) {
 
 Session::~Session() {
   live = nullptr;
-  MPI_Finalize();
+  // Every rank enters MPI_Finalize at once, when every message has been delivered: with UCX's
+  // tcp transport, MPICH 4.0.2's MPI_Finalize waits forever when ranks reach it apart, and now
+  // and then when they reach it together, which the watchdog ends (finalize_watchdog.hpp).
+  MPI_Barrier(MPI_COMM_WORLD);
+  watchdog->run([] { MPI_Finalize(); }, kFinalizePatience);
 }
 
 Session* Session::current() { return live; }

@@ -132,6 +132,19 @@ TEST_F(MpiEvolve, WorkerSetupErrorReachesTheMaster) {
   EXPECT_FALSE(std::filesystem::exists(dir));
 }
 
+TEST_F(MpiEvolve, RanksThatFinishApartEndOverTcp) {
+  // UCX's tcp transport (the one between hosts; forced here, where UCX would use shared memory)
+  // and a worker that reaches MPI_Finalize 50 ms after the master: MPICH 4.0.2 waited there
+  // forever (src/mpi/finalize_watchdog.hpp; before the fix, 5 runs of 5 hung).
+  const auto dir = freshDir("mpi-late-finalize");
+  const auto r = runMpiexec(std::string("-genv UCX_TLS tcp -n 1 ") + GPFD_BINARY + " evolve " +
+                            tinyConfig() + " --quiet --threads 1 --generations 2 --out " + dir +
+                            " : -n 1 " + GPFD_MPI_TEST_WORKER + " --exit-delay-ms 50");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output.find("timeout"), std::string::npos) << r.output;
+  EXPECT_EQ(generationsDone(dir), 2);
+}
+
 TEST_F(MpiEvolve, MasterInputErrorReleasesTheWorkers) {
   // The master refuses a directory that holds a run; the waiting workers are told to stop.
   const auto r = runMpi(3, "evolve " + tinyConfig() + " --quiet --out " + reference_);
