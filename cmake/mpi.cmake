@@ -32,9 +32,10 @@ endfunction()
 function(gpfd_multihost_tests)
   find_package(Python3 REQUIRED COMPONENTS Interpreter)
   set(run ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tests/mpi/multihost_test.py
-      --gpfd $<TARGET_FILE:gpfd> --tmp ${CMAKE_BINARY_DIR}/test-tmp/multihost)
-  set(references ReferenceCartpole)
-  set(scenarios Identical)
+      --gpfd $<TARGET_FILE:gpfd> --plugin $<TARGET_FILE:gpfd_test_plugin>
+      --tmp ${CMAKE_BINARY_DIR}/test-tmp/multihost)
+  set(references ReferenceCartpole ReferenceSleep)
+  set(scenarios Identical WorkerKilled WorkerStopped LinkDown MasterKilled)
   foreach(name ${references} ${scenarios})
     # CamelCase test name -> kebab-case scenario: ReferenceCartpole -> reference-cartpole.
     string(REGEX REPLACE "([a-z0-9])([A-Z])" "\\1-\\2" scenario ${name})
@@ -46,4 +47,7 @@ function(gpfd_multihost_tests)
   endforeach()
   set_tests_properties(Multihost.ReferenceCartpole PROPERTIES FIXTURES_SETUP multihost_cartpole)
   set_tests_properties(Multihost.Identical PROPERTIES FIXTURES_REQUIRED multihost_cartpole)
+  set_tests_properties(Multihost.ReferenceSleep PROPERTIES FIXTURES_SETUP multihost_sleep)
+  set_tests_properties(Multihost.WorkerKilled Multihost.WorkerStopped Multihost.LinkDown
+                       Multihost.MasterKilled PROPERTIES FIXTURES_REQUIRED multihost_sleep)
 endfunction()

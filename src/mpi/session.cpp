@@ -2,7 +2,9 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -62,8 +64,29 @@ Session::Session(int& argc, char**& argv) {
   live = this;
 }
 
+void Session::markLost(int rank) {
+  if (!isLost(rank)) lost_.push_back(rank);
+}
+
+bool Session::isLost(int rank) const {
+  return std::find(lost_.begin(), lost_.end(), rank) != lost_.end();
+}
+
+int Session::finish(int code) {
+  if (isMaster() && !lost_.empty()) {
+    std::fprintf(stderr,
+                 "gpfd: ending the MPI job with MPI_Abort(%d): %zu worker(s) lost, which "
+                 "MPI_Finalize would wait for\n",
+                 code, lost_.size());
+    std::fflush(nullptr);
+    MPI_Abort(MPI_COMM_WORLD, code);
+  }
+  return code;
+}
+
 Session::~Session() {
   live = nullptr;
+  if (abandoned_ || !lost_.empty()) return;
   // Every rank enters MPI_Finalize at once, when every message has been delivered: with UCX's
   // tcp transport, MPICH 4.0.2's MPI_Finalize waits forever when ranks reach it apart, and now
   // and then when they reach it together, which the watchdog ends (finalize_watchdog.hpp).
