@@ -35,7 +35,7 @@ function(gpfd_multihost_tests)
       --gpfd $<TARGET_FILE:gpfd> --plugin $<TARGET_FILE:gpfd_test_plugin>
       --tmp ${CMAKE_BINARY_DIR}/test-tmp/multihost)
   set(references ReferenceCartpole ReferenceSleep)
-  set(scenarios Identical WorkerKilled WorkerStopped LinkDown MasterKilled)
+  set(scenarios Identical WorkerKilled WorkerStopped LinkDown MasterKilled Slurm)
   foreach(name ${references} ${scenarios})
     # CamelCase test name -> kebab-case scenario: ReferenceCartpole -> reference-cartpole.
     string(REGEX REPLACE "([a-z0-9])([A-Z])" "\\1-\\2" scenario ${name})
@@ -49,5 +49,6 @@ function(gpfd_multihost_tests)
   set_tests_properties(Multihost.Identical PROPERTIES FIXTURES_REQUIRED multihost_cartpole)
   set_tests_properties(Multihost.ReferenceSleep PROPERTIES FIXTURES_SETUP multihost_sleep)
   set_tests_properties(Multihost.WorkerKilled Multihost.WorkerStopped Multihost.LinkDown
-                       Multihost.MasterKilled PROPERTIES FIXTURES_REQUIRED multihost_sleep)
+                       Multihost.MasterKilled Multihost.Slurm
+                       PROPERTIES FIXTURES_REQUIRED multihost_sleep)
 endfunction()

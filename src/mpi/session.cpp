@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
+#include <thread>
 
 #include "finalize_watchdog.hpp"
 
@@ -18,7 +19,7 @@ Session* live = nullptr;
 const FinalizeWatchdog* watchdog = nullptr;
 
 // How long MPI_Finalize may take before the watchdog steps in; a normal one takes milliseconds.
-constexpr std::chrono::milliseconds kFinalizePatience{3000};
+constexpr std::chrono::milliseconds kFinalizePatience{1000};
 
 }  // namespace
 
@@ -89,7 +90,15 @@ Session::~Session() {
   if (abandoned_ || !lost_.empty()) return;
   // Every rank enters MPI_Finalize at once, when every message has been delivered: with UCX's
   // tcp transport, MPICH 4.0.2's MPI_Finalize waits forever when ranks reach it apart, and now
-  // and then when they reach it together, which the watchdog ends (finalize_watchdog.hpp).
+  // and then when they reach it together, which the watchdog ends (finalize_watchdog.hpp). The
+  // first barrier is polled with sleeps (MPI_Barrier would spin on a core while the others
+  // come); the second, which every rank reaches at once, releases them together.
+  MPI_Request barrier = MPI_REQUEST_NULL;
+  if (MPI_Ibarrier(MPI_COMM_WORLD, &barrier) == MPI_SUCCESS) {
+    for (int done = 0; MPI_Test(&barrier, &done, MPI_STATUS_IGNORE) == MPI_SUCCESS && !done;) {
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+  }
   MPI_Barrier(MPI_COMM_WORLD);
   watchdog->run([] { MPI_Finalize(); }, kFinalizePatience);
 }

@@ -26,6 +26,9 @@ Scenarios:
                       then hydra's mpiexec itself dies then (SIGPIPE; docs/mpi.md)
   master-killed       the master gets SIGKILL in generation 2: the workers leave (the job ends);
                       resumed on 2 hosts, the run ends identical to the reference
+  slurm               examples/slurm/gpfd-evolve.sbatch in an emulated Slurm allocation of 3
+                      hosts (scripts/multihost --slurm); the master gets SIGKILL in generation
+                      2: the script resumes on its own, exit code 0, identical files
 """
 
 import argparse
@@ -209,6 +212,32 @@ class Scenarios:
         report = self.multihost(2, out, [*resume, "--threads", "2", "--quiet"], new_out=False)
         if report["exit"] != 0:
             raise Failure(f"the resumed run exited with {report['exit']}")
+        self.expect_identical("sleep", out)
+
+    def slurm(self) -> None:
+        out = self.fresh("slurm")
+        report = out.with_suffix(".json")
+        command = [
+            sys.executable, str(SOURCE / "scripts" / "multihost"), "--hosts", "3", "--slurm",
+            "--watch", str(out), "--report", str(report), "--fault", "kill", "--fault-rank", "0",
+            "--", "bash", str(SOURCE / "examples" / "slurm" / "gpfd-evolve.sbatch"),
+        ]  # fmt: skip
+        environment = dict(
+            os.environ,
+            GPFD=str(self.gpfd),
+            GPFD_ARGS=f"--plugin {self.plugin}",
+            CONFIG=str(DATA / "multihost-sleep.toml"),
+            OUT=str(out),
+            MPI_TIMEOUT="3",
+        )
+        result = subprocess.run(command, capture_output=True, text=True, env=environment)
+        print(result.stdout + result.stderr)
+        if result.returncode == SKIP:
+            raise SystemExit(SKIP)
+        if "attempt 1 ended" not in result.stderr:
+            raise Failure("the batch script did not start the run again")
+        if json.loads(report.read_text())["exit"] != 0:
+            raise Failure(f"the batch script exited with {result.returncode}")
         self.expect_identical("sleep", out)
 
 
