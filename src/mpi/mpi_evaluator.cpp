@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <deque>
+#include <map>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -60,32 +61,38 @@ std::string seconds(std::chrono::milliseconds d) {
 WorkerRelease::~WorkerRelease() {
   // Errors cannot be reported from a destructor: a worker that does not answer is lost, and
   // the session ends the job with MPI_Abort.
-  const auto start = std::chrono::steady_clock::now();
-  std::set<int> waiting;
+  using Clock = std::chrono::steady_clock;
+  std::map<int, Clock::time_point> waiting;  // Rank -> last heard from.
   for (int w = 1; w < session_.size(); ++w) {
     if (session_.isLost(w)) continue;
     // A 0-byte message is sent eagerly: MPI_Send returns at once even to a stopped worker.
     if (MPI_Send(nullptr, 0, MPI_BYTE, w, protocol::Stop, MPI_COMM_WORLD) == MPI_SUCCESS) {
-      waiting.insert(w);
+      waiting[w] = Clock::now();
     } else {
       session_.markLost(w);
     }
   }
-  // Each worker answers Stopped after whatever it still had to send (results, heartbeats).
+  // Each worker answers Stopped after whatever it still had to send (results, heartbeats); one
+  // silent for the timeout is lost.
   try {
     while (!waiting.empty()) {
-      const auto status = protocol::waitForMessage(MPI_ANY_SOURCE, kPollWindow);
-      if (status) {
+      if (const auto status = protocol::waitForMessage(MPI_ANY_SOURCE, kPollWindow)) {
         protocol::receive(*status);
-        if (status->MPI_TAG == protocol::Stopped) waiting.erase(status->MPI_SOURCE);
+        const auto it = waiting.find(status->MPI_SOURCE);
+        if (it != waiting.end()) it->second = Clock::now();
+        if (it != waiting.end() && status->MPI_TAG == protocol::Stopped) waiting.erase(it);
       }
-      if (std::chrono::steady_clock::now() - start > timeout_) {
-        for (const int w : waiting) session_.markLost(w);
-        break;
+      for (auto it = waiting.begin(); it != waiting.end();) {
+        if (Clock::now() - it->second <= timeout_) {
+          ++it;
+          continue;
+        }
+        session_.markLost(it->first);
+        it = waiting.erase(it);
       }
     }
   } catch (const std::exception&) {
-    for (const int w : waiting) session_.markLost(w);
+    for (const auto& [rank, heard] : waiting) session_.markLost(rank);
   }
 }
 
