@@ -24,3 +24,31 @@ function(gpfd_mpi_tests)
                                GPFD_MPI_TEST_WORKER="$<TARGET_FILE:gpfd_test_mpi_worker>")
   endif()
 endfunction()
+
+# tests/mpi/multihost_test.py: gpfd evolve across hosts made of network namespaces
+# (scripts/multihost), label "multihost". They need root; elsewhere they report themselves
+# skipped. scripts/test leaves them out; .ci/run runs them in a stage of their own.
+# Multihost.<Name> runs the scenario <name>; the threads-only reference runs are fixtures.
+function(gpfd_multihost_tests)
+  find_package(Python3 REQUIRED COMPONENTS Interpreter)
+  set(run ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tests/mpi/multihost_test.py
+      --gpfd $<TARGET_FILE:gpfd> --plugin $<TARGET_FILE:gpfd_test_plugin>
+      --tmp ${CMAKE_BINARY_DIR}/test-tmp/multihost)
+  set(references ReferenceCartpole ReferenceSleep)
+  set(scenarios Identical WorkerKilled WorkerStopped LinkDown MasterKilled Slurm)
+  foreach(name ${references} ${scenarios})
+    # CamelCase test name -> kebab-case scenario: ReferenceCartpole -> reference-cartpole.
+    string(REGEX REPLACE "([a-z0-9])([A-Z])" "\\1-\\2" scenario ${name})
+    string(TOLOWER ${scenario} scenario)
+    add_test(NAME Multihost.${name} COMMAND ${run} ${scenario})
+    # One at a time: each makes its own namespaces, but they share two cores.
+    set_tests_properties(Multihost.${name} PROPERTIES LABELS multihost SKIP_RETURN_CODE 77
+                         TIMEOUT 150 RESOURCE_LOCK multihost)
+  endforeach()
+  set_tests_properties(Multihost.ReferenceCartpole PROPERTIES FIXTURES_SETUP multihost_cartpole)
+  set_tests_properties(Multihost.Identical PROPERTIES FIXTURES_REQUIRED multihost_cartpole)
+  set_tests_properties(Multihost.ReferenceSleep PROPERTIES FIXTURES_SETUP multihost_sleep)
+  set_tests_properties(Multihost.WorkerKilled Multihost.WorkerStopped Multihost.LinkDown
+                       Multihost.MasterKilled Multihost.Slurm
+                       PROPERTIES FIXTURES_REQUIRED multihost_sleep)
+endfunction()

@@ -2,6 +2,8 @@
 // turns its flags into a service::EvolveRequest (gpfd/service/evolve.hpp does the rest).
 #include <unistd.h>
 
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 
@@ -32,6 +34,7 @@ struct EvolveOptions {
   std::vector<std::string> sets;
   std::optional<int> runs;
   bool quiet = false;
+  double mpiTimeout = 60.0;  // Seconds (mpi::kDefaultWorkerTimeout).
 };
 
 // The flags that override config keys, applied like --set so that they are checked in one place.
@@ -64,11 +67,16 @@ int evolve(const EvolveOptions& o) {
   std::optional<mpi::WorkerRelease> release;
   if (auto* session = mpi::Session::current(); session && session->size() > 1) {
     if (!session->isMaster()) return mpi::serveAsWorker(*session, o.threads, kVersion);
-    release.emplace(*session);
+    const auto timeout = std::chrono::milliseconds(std::llround(o.mpiTimeout * 1000));
+    release.emplace(*session, timeout);
     request.processes = session->size();
-    request.makeEvaluator = [session](const run::EvaluatorSetup& setup) {
-      return std::make_unique<mpi::MpiEvaluator>(*session, setup.configText, kVersion,
-                                                 setup.onEvaluated);
+    request.makeEvaluator = [session, timeout](const run::EvaluatorSetup& setup) {
+      return std::make_unique<mpi::MpiEvaluator>(
+          *session, setup.configText, kVersion,
+          mpi::MpiEvaluatorOptions{
+              .workerTimeout = timeout,
+              .onEvaluated = setup.onEvaluated,
+              .onWorkerLost = [](const std::string& s) { writeTo(stderr, "gpfd: " + s + "\n"); }});
     };
   }
 #endif
@@ -116,6 +124,10 @@ const CommandRegistration registration{
                       "from --seed (run 1 uses it as is); runs.csv sums them up")
           ->check(bounded(1, 1000));
       cmd->add_flag("--quiet", o->quiet, "No progress output");
+      cmd->add_option("--mpi-timeout", o->mpiTimeout,
+                      "Under mpiexec: seconds without a message after which a worker is lost "
+                      "and its evaluations go to the others (default 60)")
+          ->check(CLI::Range(0.1, 86400.0));
       return [o] { return evolve(*o); };
     }};
 

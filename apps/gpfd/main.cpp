@@ -25,21 +25,11 @@ std::vector<Command>& commands() {
 }
 }  // namespace gpfd::app
 
-int main(int argc, char** argv) {
+namespace {
+
+// Runs the command of the command line; returns the exit code.
+int runCommand(int argc, char** argv) {
   using namespace gpfd;
-#ifdef GPFD_HAVE_MPI
-  // Started by mpiexec: MPI lives for the whole process (`gpfd evolve` then runs rank 0 as the
-  // master, the others as workers). Otherwise gpfd never touches MPI.
-  std::optional<mpi::Session> session;
-  if (mpi::Session::launchedByProcessManager()) {
-    try {
-      session.emplace(argc, argv);
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "error: %s\n", e.what());
-      return 1;
-    }
-  }
-#endif
   std::vector<char*> args;
   try {
     args = app::loadPluginArguments(argc, argv);
@@ -81,7 +71,8 @@ int main(int argc, char** argv) {
   }
   try {
 #ifdef GPFD_HAVE_MPI
-    if (session && session->size() > 1 && !cli.got_subcommand("evolve")) {
+    if (auto* session = mpi::Session::current();
+        session && session->size() > 1 && !cli.got_subcommand("evolve")) {
       // Every rank runs the same command line; only evolve divides the work.
       if (!session->isMaster()) return 2;
       throw InputError("only `gpfd evolve` runs on several MPI processes",
@@ -105,4 +96,29 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace gpfd;
+#ifdef GPFD_HAVE_MPI
+  // Started by mpiexec: MPI lives for the whole process (`gpfd evolve` then runs rank 0 as the
+  // master, the others as workers). Otherwise gpfd never touches MPI.
+  std::optional<mpi::Session> session;
+  if (mpi::Session::launchedByProcessManager()) {
+    try {
+      session.emplace(argc, argv);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "error: %s\n", e.what());
+      return 1;
+    }
+  }
+#endif
+  const int code = runCommand(argc, argv);
+#ifdef GPFD_HAVE_MPI
+  // A master that lost workers ends the job here with MPI_Abort (mpi/session.hpp).
+  if (session) return session->finish(code);
+#endif
+  return code;
 }

@@ -80,13 +80,15 @@ std::vector<char> receive(const MPI_Status& status) {
   return bytes;
 }
 
-MPI_Status waitForMessage(int source) {
+std::optional<MPI_Status> waitForMessage(int source, std::chrono::microseconds patience) {
+  const auto until = std::chrono::steady_clock::now() + patience;
   auto pause = kMinPause;
   while (true) {
     int arrived = 0;
     MPI_Status status;
     check(MPI_Iprobe(source, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &status), "MPI_Iprobe");
     if (arrived) return status;
+    if (std::chrono::steady_clock::now() >= until) return std::nullopt;
     std::this_thread::sleep_for(pause);
     pause = std::min(pause * 2, kMaxPause);
   }

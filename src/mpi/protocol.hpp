@@ -1,15 +1,18 @@
 // mpi (private): the master/worker messages. Every message is a flat byte buffer sent as MPI_BYTE
 // on MPI_COMM_WORLD; its tag says what it is. The master is rank 0.
 //
-//   master -> worker  Config  version, resolved config (TOML text)
-//   worker -> master  Ready   credit: how many tasks the worker evaluates at once (its threads)
-//   master -> worker  Task    task number, genome index in the batch, seed, genome (binary)
-//   worker -> master  Result  task number, fitness
-//   worker -> master  Failure task number (kNoTask for setup), input error?, what, where, host
-//   master -> worker  Stop    (empty): leave the worker loop
+//   master -> worker  Config    version, resolved config (TOML text), heartbeat period (ms)
+//   worker -> master  Ready     credit: how many tasks it evaluates at once (threads), host
+//   master -> worker  Task      task number, seed, genome (binary)
+//   worker -> master  Result    task number, fitness
+//   worker -> master  Failure   task number (kNoTask for setup), input error?, what, where, host
+//   worker -> master  Heartbeat (empty): sent when nothing else was sent for a heartbeat period
+//   master -> worker  Stop      (empty): leave the worker loop
+//   worker -> master  Stopped   (empty): the worker's last message
 //
 // A worker sends one Result or Failure per Task it received: the reply is also its request for
-// the next task (dynamic load balancing).
+// the next task (dynamic load balancing). A worker the master has not heard from for its
+// timeout is lost to it: the master never sends to it again and drops what it still sends.
 #pragma once
 
 #include <mpi.h>
@@ -17,6 +20,7 @@
 #include <chrono>
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -25,7 +29,16 @@
 
 namespace gpfd::mpi::protocol {
 
-enum Tag : int { Config = 1, Ready = 2, Task = 3, Result = 4, Failure = 5, Stop = 6 };
+enum Tag : int {
+  Config = 1,
+  Ready = 2,
+  Task = 3,
+  Result = 4,
+  Failure = 5,
+  Stop = 6,
+  Heartbeat = 7,
+  Stopped = 8
+};
 
 inline constexpr std::uint64_t kNoTask = ~std::uint64_t{0};
 inline constexpr int kMaster = 0;
@@ -80,9 +93,10 @@ class Reader {
 // Receives the message that `status` (from MPI_Probe/MPI_Iprobe) announced.
 std::vector<char> receive(const MPI_Status& status);
 
-// Polls for a message from `source` (or MPI_ANY_SOURCE) with a growing sleep between polls
-// (MPICH's blocking calls spin, which would steal a core from the computing ranks).
-MPI_Status waitForMessage(int source);
+// Polls for a message from `source` (or MPI_ANY_SOURCE) for at most `patience`, with a growing
+// sleep between polls (MPICH's blocking calls spin, which would steal a core from the computing
+// ranks); nothing when none came.
+std::optional<MPI_Status> waitForMessage(int source, std::chrono::microseconds patience);
 
 // Sleep between polls: from kMinPause, doubling up to kMaxPause while nothing arrives. The
 // queued tasks of each worker (mpi_evaluator.cpp) hide this latency when evaluations take

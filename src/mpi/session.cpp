@@ -2,13 +2,24 @@
 
 #include <mpi.h>
 
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
+#include <thread>
+
+#include "finalize_watchdog.hpp"
 
 namespace gpfd::mpi {
 namespace {
 
 Session* live = nullptr;
+// Created before MPI_Init (the sockets MPI opens are the ones made after it).
+const FinalizeWatchdog* watchdog = nullptr;
+
+// How long MPI_Finalize may take before the watchdog steps in; a normal one takes milliseconds.
+constexpr std::chrono::milliseconds kFinalizePatience{1000};
 
 }  // namespace
 
@@ -21,6 +32,8 @@ bool Session::launchedByProcessManager() {
 
 Session::Session(int& argc, char**& argv) {
   if (live != nullptr) throw std::logic_error("only one MPI session per process");
+  static const FinalizeWatchdog beforeInit;
+  watchdog = &beforeInit;
   int provided = 0;
   if (MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS) {
     throw std::runtime_error("MPI_Init_thread failed");
@@ -52,9 +65,42 @@ Session::Session(int& argc, char**& argv) {
   live = this;
 }
 
+void Session::markLost(int rank) {
+  if (!isLost(rank)) lost_.push_back(rank);
+}
+
+bool Session::isLost(int rank) const {
+  return std::find(lost_.begin(), lost_.end(), rank) != lost_.end();
+}
+
+int Session::finish(int code) {
+  if (isMaster() && !lost_.empty()) {
+    std::fprintf(stderr,
+                 "gpfd: ending the MPI job with MPI_Abort(%d): %zu worker(s) lost, which "
+                 "MPI_Finalize would wait for\n",
+                 code, lost_.size());
+    std::fflush(nullptr);
+    MPI_Abort(MPI_COMM_WORLD, code);
+  }
+  return code;
+}
+
 Session::~Session() {
   live = nullptr;
-  MPI_Finalize();
+  if (abandoned_ || !lost_.empty()) return;
+  // Every rank enters MPI_Finalize at once, when every message has been delivered: with UCX's
+  // tcp transport, MPICH 4.0.2's MPI_Finalize waits forever when ranks reach it apart, and now
+  // and then when they reach it together, which the watchdog ends (finalize_watchdog.hpp). The
+  // first barrier is polled with sleeps (MPI_Barrier would spin on a core while the others
+  // come); the second, which every rank reaches at once, releases them together.
+  MPI_Request barrier = MPI_REQUEST_NULL;
+  if (MPI_Ibarrier(MPI_COMM_WORLD, &barrier) == MPI_SUCCESS) {
+    for (int done = 0; MPI_Test(&barrier, &done, MPI_STATUS_IGNORE) == MPI_SUCCESS && !done;) {
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  watchdog->run([] { MPI_Finalize(); }, kFinalizePatience);
 }
 
 Session* Session::current() { return live; }

@@ -4,9 +4,11 @@
 #include <tbb/info.h>
 
 #include <algorithm>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include "evaluation_pool.hpp"
@@ -47,11 +49,9 @@ void sendToMaster(const EvaluationPool::Reply& reply) {
 }
 
 // The learning task of the master's config, checked against this worker's build.
-std::shared_ptr<const run::LearningTask> configure(const std::vector<char>& message,
+std::shared_ptr<const run::LearningTask> configure(const std::string& masterVersion,
+                                                   const std::string& text,
                                                    const std::string& version) {
-  protocol::Reader r(message);
-  const std::string masterVersion = r.getString();
-  const std::string text = r.getString();
   if (masterVersion != version) {
     throw InputError("this worker runs gpfd " + version + ", the master gpfd " + masterVersion);
   }
@@ -63,18 +63,39 @@ std::shared_ptr<const run::LearningTask> configure(const std::vector<char>& mess
   return std::make_shared<const run::LearningTask>(config, run::LearningTask::Budget::Trial);
 }
 
-// The worker loop; throws only when the protocol itself breaks.
+using Clock = std::chrono::steady_clock;
+
+// The worker loop; throws only when the protocol itself breaks. Only this thread calls MPI; the
+// pool's threads configure and evaluate. Once the master's config has come, a heartbeat goes out
+// whenever nothing else was sent for the period the config names, so that the master can tell a
+// worker that computes from one that is gone.
 int serve(const Session& session, int threads, const std::string& version,
           const WorkerTestHooks& hooks) {
   const int count = workerThreads(session, threads);
   const std::string& host = session.host();
+  // Written by the configuring job, read when a task is submitted: the master sends tasks only
+  // after this worker's Ready, which the pool hands over after the write.
   std::shared_ptr<const run::LearningTask> learning;
   EvaluationPool pool(count);
+  std::optional<std::chrono::milliseconds> heartbeat;
+  auto lastSent = Clock::now();
+  const auto send = [&](const EvaluationPool::Reply& reply) {
+    sendToMaster(reply);
+    lastSent = Clock::now();
+  };
+  // How long the loop may wait before a heartbeat is due.
+  const auto untilHeartbeat = [&] {
+    if (!heartbeat) return std::chrono::microseconds(std::chrono::hours(1));
+    const auto left = lastSent + *heartbeat - Clock::now();
+    return std::max(std::chrono::microseconds(0),
+                    std::chrono::duration_cast<std::chrono::microseconds>(left));
+  };
   auto pause = protocol::kMinPause;
   while (true) {
     auto replies = pool.takeReplies(std::chrono::microseconds(0));
-    for (const auto& reply : replies) sendToMaster(reply);
+    for (const auto& reply : replies) send(reply);
     if (!replies.empty()) pause = protocol::kMinPause;  // The next task comes soon.
+    if (heartbeat && untilHeartbeat().count() == 0) send({protocol::Heartbeat, {}});
 
     int arrived = 0;
     MPI_Status status;
@@ -82,13 +103,13 @@ int serve(const Session& session, int threads, const std::string& version,
                     "MPI_Iprobe");
     if (!arrived && pool.pending() >= static_cast<std::size_t>(count)) {
       // Every thread is busy: nothing from the master is needed before one finishes (the master
-      // sends Stop only when no task is out), so sleep until then instead of polling.
-      for (const auto& reply : pool.awaitReplies()) sendToMaster(reply);
+      // sends Stop only when no task is out), so sleep until then or until a heartbeat is due.
+      for (const auto& reply : pool.takeReplies(untilHeartbeat())) send(reply);
       pause = protocol::kMinPause;
       continue;
     }
     if (!arrived) {
-      for (const auto& reply : pool.takeReplies(pause)) sendToMaster(reply);
+      for (const auto& reply : pool.takeReplies(std::min(pause, untilHeartbeat()))) send(reply);
       pause = std::min(pause * 2, protocol::kMaxPause);
       continue;
     }
@@ -96,16 +117,26 @@ int serve(const Session& session, int threads, const std::string& version,
     auto message = protocol::receive(status);
     switch (status.MPI_TAG) {
       case protocol::Stop:
+        send({protocol::Stopped, {}});
         return 0;  // The master sends Stop only when no task is out.
-      case protocol::Config:
-        try {
-          learning = configure(message, version);
-          sendToMaster({protocol::Ready, protocol::Writer().put(std::int32_t{count}).take()});
-        } catch (...) {
-          learning.reset();
-          sendToMaster(failureReply(protocol::kNoTask, host));
-        }
+      case protocol::Config: {
+        protocol::Reader r(message);
+        std::string masterVersion = r.getString(), text = r.getString();
+        heartbeat = std::chrono::milliseconds(r.get<std::int64_t>());
+        // Built on the pool, so that heartbeats go on while it takes.
+        pool.submit([&learning, masterVersion = std::move(masterVersion), text = std::move(text),
+                     &version, count, host]() -> EvaluationPool::Reply {
+          try {
+            learning = configure(masterVersion, text, version);
+            return {protocol::Ready,
+                    protocol::Writer().put(std::int32_t{count}).putString(host).take()};
+          } catch (...) {
+            learning.reset();
+            return failureReply(protocol::kNoTask, host);
+          }
+        });
         break;
+      }
       case protocol::Task:
         pool.submit([bytes = std::move(message), learning, &hooks, host]() {
           protocol::Reader r(bytes);
@@ -138,18 +169,19 @@ int workerThreads(const Session& session, int threads) {
   return std::max(1, tbb::info::default_concurrency() / std::max(1, session.workersOnNode()));
 }
 
-int serveAsWorker(const Session& session, int threads, const std::string& version,
+int serveAsWorker(Session& session, int threads, const std::string& version,
                   const WorkerTestHooks& hooks) {
   std::signal(SIGINT, SIG_IGN);
   try {
     return serve(session, threads, version, hooks);
   } catch (const std::exception& e) {
-    // The protocol itself broke (an MPI error, a message it does not know): the master would
-    // wait for this worker forever, so the whole job ends here; the master's last checkpoint
-    // stays usable.
-    std::fprintf(stderr, "error: MPI worker %d on %s: %s; aborting the MPI job\n", session.rank(),
+    // The protocol itself broke (an MPI error: most often the master is gone; a message it does
+    // not know): this worker leaves without MPI_Finalize, which would wait for the others. A
+    // living master takes it as lost after its timeout and goes on without it, unless mpiexec
+    // ends the whole job when a process fails (hydra's default; -disable-auto-cleanup keeps it).
+    std::fprintf(stderr, "error: MPI worker %d on %s: %s; leaving the MPI job\n", session.rank(),
                  session.host().c_str(), e.what());
-    MPI_Abort(MPI_COMM_WORLD, 1);
+    session.abandon();
     return 1;
   }
 }

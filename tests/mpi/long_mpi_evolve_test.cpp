@@ -1,7 +1,8 @@
 // `gpfd evolve` under `mpiexec -n 3` on localhost (master + 2 workers): the same results as the
 // threaded run, exact resume, a worker's exception ends the run with its message and a usable
-// checkpoint, and SIGINT stops every rank after a checkpoint. MPIEXEC_TIMEOUT bounds every
-// launch, so a hang fails the test instead of blocking it.
+// checkpoint, a worker that hangs is replaced by the other, and SIGINT stops every rank after a
+// checkpoint. MPIEXEC_TIMEOUT bounds every launch, so a hang fails the test instead of blocking
+// it.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -120,6 +121,25 @@ TEST_F(MpiEvolve, WorkerFailureEndsTheRunWithItsMessageAndACheckpoint) {
   EXPECT_EQ(fingerprint(dir), fingerprint(reference_));
 }
 
+TEST_F(MpiEvolve, HungWorkersEvaluationsGoToTheOther) {
+  // Worker 2 hangs (SIGSTOP) at its first task from number 14 on (generation 1 or later), with
+  // tasks unanswered. The master takes it as lost after --mpi-timeout, gives its evaluations to
+  // worker 1, finishes with the threaded result and ends the job with MPI_Abort(0). (A worker
+  // that dies is the same to the master, but on one host hydra's single proxy ends the whole job
+  // when one of its processes dies: tests/mpi/multihost_test.py has it, one host per rank.)
+  const auto dir = freshDir("mpi-lost-worker");
+  const auto r = runMpiexec(std::string("-disable-auto-cleanup -n 1 ") + GPFD_BINARY + " evolve " +
+                            tinyConfig() + " --quiet --threads 1 --mpi-timeout 1 --out " + dir +
+                            " : -n 1 " + GPFD_MPI_TEST_WORKER + " : -n 1 " + GPFD_MPI_TEST_WORKER +
+                            " --vanish-at-task 14 stop");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("MPI worker 2 on "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(" lost (no message from it for 1 s); the "), std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("timeout"), std::string::npos) << r.output;
+  EXPECT_EQ(fingerprint(dir), fingerprint(reference_));
+}
+
 TEST_F(MpiEvolve, WorkerSetupErrorReachesTheMaster) {
   // A worker that cannot take part (here: one of another gpfd version) stops the run before
   // anything is written, with its message.
@@ -130,6 +150,19 @@ TEST_F(MpiEvolve, WorkerSetupErrorReachesTheMaster) {
   EXPECT_NE(r.output.find("this worker runs gpfd 0.0.0-other, the master gpfd"), std::string::npos)
       << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir));
+}
+
+TEST_F(MpiEvolve, RanksThatFinishApartEndOverTcp) {
+  // UCX's tcp transport (the one between hosts; forced here, where UCX would use shared memory)
+  // and a worker that reaches MPI_Finalize 50 ms after the master: MPICH 4.0.2 waited there
+  // forever (src/mpi/finalize_watchdog.hpp; before the fix, 5 runs of 5 hung).
+  const auto dir = freshDir("mpi-late-finalize");
+  const auto r = runMpiexec(std::string("-genv UCX_TLS tcp -n 1 ") + GPFD_BINARY + " evolve " +
+                            tinyConfig() + " --quiet --threads 1 --generations 2 --out " + dir +
+                            " : -n 1 " + GPFD_MPI_TEST_WORKER + " --exit-delay-ms 50");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output.find("timeout"), std::string::npos) << r.output;
+  EXPECT_EQ(generationsDone(dir), 2);
 }
 
 TEST_F(MpiEvolve, MasterInputErrorReleasesTheWorkers) {

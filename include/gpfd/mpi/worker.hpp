@@ -21,9 +21,10 @@ struct WorkerTestHooks {
 // Serves the master until it sends Stop: receives the resolved config (once per run), builds the
 // LearningTask, then evaluates each genome it is sent with run::trialFitness on its own seed,
 // `threads` at a time (0: this node's cores shared among the workers on it), and replies with
-// the fitness or with the exception's message. Ignores SIGINT: the master decides when to stop.
-// Returns the process exit code (0).
-int serveAsWorker(const Session& session, int threads, const std::string& version,
+// the fitness or with the exception's message; sends heartbeats (mpi_evaluator.hpp). Ignores
+// SIGINT: the master decides when to stop. Returns the process exit code: 0, or 1 when the
+// protocol broke (the master gone), after marking the session abandoned.
+int serveAsWorker(Session& session, int threads, const std::string& version,
                   const WorkerTestHooks& hooks = {});
 
 // The thread count serveAsWorker uses for `threads` on this node.

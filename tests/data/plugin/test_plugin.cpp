@@ -1,16 +1,23 @@
-// A plug-in for tests/run/plugin_test.cpp and tests/rl/lockstep_plugin_test.cpp, built like
-// examples/mountain-car (it links gpfd::plugin only): environments "walk" and "drift" and a
-// learner "hill", each registered with one line.
+// A plug-in for tests/run/plugin_test.cpp, tests/rl/lockstep_plugin_test.cpp and the MPI tests
+// across hosts (tests/mpi/multihost_test.py), built like examples/mountain-car (it links
+// gpfd::plugin only): environments "walk" and "drift" and learners "hill" and "sleep", each
+// registered with one line.
 //   walk: a point on a line; the action moves it; reward -|x| per step; 20 steps.
 //   drift: a point with a velocity; the action accelerates it; reward -x^2 per step; ends when
 //          |x| > 2 or after max_steps. It declares a batched form (env/batch.hpp) that steps its
 //          lanes with the same arithmetic; at exit it prints how many steps each form made.
 //   hill: hill climbing over linear deterministic policies: each update perturbs the weights
 //         (Gaussian, `noise`) and keeps them when one episode returns more.
+//   sleep: a stand-in for a costly learner (a training of `ms` milliseconds that needs no core):
+//          sleeps, then plays `episodes` episodes with every weight 1 (action = the sum of the
+//          features), one point of its curve each. The MPI tests use it to time faults within a
+//          generation, and scripts/multihost-scaling for evaluations of a chosen cost.
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <thread>
 
 #include "gpfd/env/batch.hpp"
 #include "gpfd/env/environment.hpp"
@@ -153,6 +160,45 @@ class DriftBatch final : public env::BatchEnvironment {
   int maxSteps_;
 };
 
+// The return of one episode with action = weights . features (one continuous action).
+double episode(env::Environment& env, const features::FeatureMap& map,
+               const rl::LinearWeights& weights, Rng& rng, rl::LearningCurve& counters) {
+  std::vector<double> phi(map.outputDim());
+  double total = 0.0;
+  env.reset(rng);
+  for (;;) {
+    map.evaluate(env.state().data(), phi.data());
+    double action = 0.0;
+    for (std::size_t i = 0; i < phi.size(); ++i) action += weights.values[i] * phi[i];
+    const auto result = env.step(std::span<const double>(&action, 1));
+    total += result.reward;
+    ++counters.steps;
+    if (result.terminated || result.truncated) break;
+  }
+  ++counters.episodes;
+  return total;
+}
+
+// Hill and sleep: learners of linear deterministic policies, evaluated by the mean return of
+// `episodes` episodes.
+class LinearPolicyLearner : public rl::Learner {
+ public:
+  rl::Evaluation evaluate(env::Environment& env, const features::FeatureMap& map,
+                          const rl::LinearWeights& weights, int episodes, Rng& rng) const override {
+    rl::LearningCurve counters;
+    double sum = 0.0;
+    for (int e = 0; e < episodes; ++e) sum += episode(env, map, weights, rng, counters);
+    return {episodes, episodes > 0 ? sum / episodes : 0.0, counters.steps, false};
+  }
+};
+
+// Why hill and sleep cannot learn on `env` (empty when they can).
+std::string unsuitable(env::Environment& env) {
+  const auto space = env.actionSpace();
+  return space.continuous() && space.components == 1 ? ""
+                                                     : "it has not exactly one continuous action";
+}
+
 struct HillConfig {
   int updates = 10;
   double noise = 0.5;
@@ -168,7 +214,7 @@ struct HillConfig {
   }
 };
 
-class Hill final : public rl::Learner {
+class Hill final : public LinearPolicyLearner {
  public:
   explicit Hill(HillConfig config) : config_(config) {}
 
@@ -195,35 +241,46 @@ class Hill final : public rl::Learner {
     return curve;
   }
 
-  rl::Evaluation evaluate(env::Environment& env, const features::FeatureMap& map,
-                          const rl::LinearWeights& weights, int episodes, Rng& rng) const override {
-    rl::LearningCurve counters;
-    double sum = 0.0;
-    for (int e = 0; e < episodes; ++e) sum += episode(env, map, weights, rng, counters);
-    return {episodes, episodes > 0 ? sum / episodes : 0.0, counters.steps, false};
+ private:
+  HillConfig config_;
+};
+
+struct SleepConfig {
+  double ms = 10.0;
+  int episodes = 1;
+  static const ParamTable<SleepConfig>& table() {
+    static const auto table = ParamTable<SleepConfig>("sleep")
+                                  .real(
+                                      "ms", [](auto& c) -> auto& { return c.ms; }, 0.0, 3.6e6,
+                                      "milliseconds asleep per training")
+                                  .integer(
+                                      "episodes", [](auto& c) -> auto& { return c.episodes; }, 1,
+                                      100000, "episodes played after the sleep");
+    return table;
+  }
+};
+
+class Sleep final : public LinearPolicyLearner {
+ public:
+  explicit Sleep(SleepConfig config) : config_(config) {}
+
+  rl::LearningCurve train(env::Environment& env, const features::FeatureMap& map, Rng& rng,
+                          const rl::PointCallback& onPoint) const override {
+    std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(config_.ms));
+    rl::LearningCurve curve;
+    curve.weights.rows = 1;
+    curve.weights.cols = map.outputDim();
+    curve.weights.values.assign(map.outputDim(), 1.0);
+    for (int e = 0; e < config_.episodes; ++e) {
+      const double value = episode(env, map, curve.weights, rng, curve);
+      curve.points.push_back({e, curve.episodes, curve.steps, value});
+      if (onPoint) onPoint(curve.points.back());
+    }
+    return curve;
   }
 
  private:
-  // The return of one episode with action = weights . features.
-  static double episode(env::Environment& env, const features::FeatureMap& map,
-                        const rl::LinearWeights& weights, Rng& rng, rl::LearningCurve& counters) {
-    std::vector<double> phi(map.outputDim());
-    double total = 0.0;
-    env.reset(rng);
-    for (;;) {
-      map.evaluate(env.state().data(), phi.data());
-      double action = 0.0;
-      for (std::size_t i = 0; i < phi.size(); ++i) action += weights.values[i] * phi[i];
-      const auto result = env.step(std::span<const double>(&action, 1));
-      total += result.reward;
-      ++counters.steps;
-      if (result.terminated || result.truncated) break;
-    }
-    ++counters.episodes;
-    return total;
-  }
-
-  HillConfig config_;
+  SleepConfig config_;
 };
 
 void registerAll(PluginRegistries& r) {
@@ -242,14 +299,12 @@ void registerAll(PluginRegistries& r) {
   r.learners.add(
       {"hill", "hill climbing over linear policies (a test plug-in)", HillConfig::table().specs(),
        [](const Params& p) { return std::make_unique<Hill>(HillConfig::table().read(p)); },
-       "one continuous action",
-       [](env::Environment& env) {
-         const auto space = env.actionSpace();
-         return std::string(space.continuous() && space.components == 1
-                                ? ""
-                                : "it has not exactly one continuous action");
-       },
-       "updates", "perturbation"});
+       "one continuous action", unsuitable, "updates", "perturbation"});
+  r.learners.add(
+      {"sleep", "sleeps, then plays with every weight 1 (a test plug-in)",
+       SleepConfig::table().specs(),
+       [](const Params& p) { return std::make_unique<Sleep>(SleepConfig::table().read(p)); },
+       "one continuous action", unsuitable, "episodes", "episode"});
 }
 
 }  // namespace
