@@ -73,7 +73,8 @@ std::vector<run::FeatureSet> featureSets(const AssessRequest& r, const run::Lear
     std::string name =
         source.name.empty() ? std::filesystem::path(source.path).stem().string() : source.name;
     for (const auto& s : sets) {
-      if (s.name == name) name += "-" + std::to_string(sets.size());
+      // append, not +: GCC 12 gives a false -Wrestrict on "-" + std::string (GCC bug 105329).
+      if (s.name == name) name.append("-").append(std::to_string(sets.size()));
     }
     // A genome past the compiler's limits is the user's input, named as such.
     const auto mapOf = [&](bool withOriginal) {
