@@ -21,7 +21,7 @@ def _feature_space(features: FeatureSet, with_original: bool, source: spaces.Spa
     return spaces.Box(-_MAX, _MAX, shape=(count,), dtype=np.float64)
 
 
-def _check(env, features: FeatureSet, space: spaces.Space) -> None:
+def check_features(env, features: FeatureSet, space: spaces.Space) -> None:
     """TypeError unless the features read this environment's observation (`space`, one
     instance's): gpfd's environments by name and variables, others by size."""
     base = env.unwrapped
@@ -54,7 +54,7 @@ class FeatureObservation(gym.ObservationWrapper, gym.utils.RecordConstructorArgs
             self, features=features, with_original=with_original
         )
         gym.ObservationWrapper.__init__(self, env)
-        _check(env, features, env.observation_space)
+        check_features(env, features, env.observation_space)
         self.features = features
         self.with_original = with_original
         self.observation_space = _feature_space(features, with_original, env.observation_space)
@@ -71,7 +71,7 @@ class VectorFeatureObservation(VectorObservationWrapper):
     def __init__(self, env: VectorEnv, features: FeatureSet, with_original: bool = False):
         super().__init__(env)
         single = env.single_observation_space
-        _check(env, features, single)
+        check_features(env, features, single)
         self.features = features
         self.with_original = with_original
         self.single_observation_space = _feature_space(features, with_original, single)

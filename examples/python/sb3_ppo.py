@@ -1,0 +1,141 @@
+"""PPO from Stable-Baselines3 on discovered features, against PPO on the raw observation.
+
+1. discover features for cart-pole (discrete force, 500 steps: Gymnasium CartPole-v1's task) with
+   a small GP run, once per GP seed;
+2. train PPO (SB3's MlpPolicy) on gpfd's vector cart-pole seen through each feature set
+   (gpfd.sb3.make_vec_env), on the raw observation, and on the raw observation standardised by
+   SB3's VecNormalize (running mean and sd, what SB3 users do for scale; gpfd's features carry
+   their own scaling), over several PPO seeds;
+3. evaluate every trained policy (deterministic actions) on 20 fresh episodes and compare.
+
+Needs the optional extra (PyTorch comes with SB3): scripts/sb3-example installs it and runs this.
+    python examples/python/sb3_ppo.py                  # docs/results/sb3/README.md's figures
+    python examples/python/sb3_ppo.py --gp-runs 1 --seeds 1 --timesteps 2000   # a smoke run
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import time
+
+import numpy as np
+from stable_baselines3 import PPO
+from stable_baselines3.common.vec_env import VecEnv, VecMonitor, VecNormalize
+
+import gpfd
+import gpfd.sb3
+
+TASK = {"actions": "discrete", "max_steps": 500}
+N_ENVS = 8
+# PPO's hyperparameters for CartPole-v1 from the RL Baselines3 Zoo (hyperparams/ppo.yml), with
+# constant rates instead of its linear schedules.
+PPO_PARAMS = {
+    "n_steps": 32,
+    "batch_size": 256,
+    "gae_lambda": 0.8,
+    "gamma": 0.98,
+    "n_epochs": 20,
+    "ent_coef": 0.0,
+    "learning_rate": 1e-3,
+    "clip_range": 0.2,
+}
+
+
+def discover(seed: int, population: int, generations: int) -> gpfd.FeatureSet:
+    """A small cartpole-quick run on the discrete 500-step task; its returned (confirmed) set."""
+    run = gpfd.evolve(
+        "cartpole-quick",
+        seed=seed,
+        population=population,
+        generations=generations,
+        set={
+            "env.params.actions": TASK["actions"],
+            "env.params.max_steps": TASK["max_steps"],
+            "learner.params.updates": 15,
+            "fitness.trials": 3,
+        },
+        verbose=False,
+        out=f"results/sb3-example/gp-{seed}",
+        force=True,
+    )
+    assert run.best is not None  # A finished run has its best.features.
+    return run.best
+
+
+def train_and_evaluate(
+    features: gpfd.FeatureSet | None, seed: int, timesteps: int, episodes: int, normalise: bool
+) -> float:
+    """PPO trained for `timesteps` steps; the mean return of `episodes` evaluation episodes."""
+    venv: VecEnv = VecMonitor(
+        gpfd.sb3.make_vec_env(
+            "gpfd/CartPole-v0", N_ENVS, seed=seed, features=features, env_kwargs=TASK
+        )
+    )
+    if normalise:
+        venv = VecNormalize(venv, norm_reward=False)
+    model = PPO("MlpPolicy", venv, seed=seed, device="cpu", verbose=0, **PPO_PARAMS)
+    model.learn(total_timesteps=timesteps)
+    evaluation: VecEnv = gpfd.sb3.make_vec_env(
+        "gpfd/CartPole-v0", N_ENVS, seed=10_000 + seed, features=features, env_kwargs=TASK
+    )
+    if isinstance(venv, VecNormalize):  # The statistics learnt in training, frozen.
+        evaluation = VecNormalize(evaluation, training=False, norm_reward=False)
+        evaluation.obs_rms = venv.obs_rms
+    returns: list[float] = []
+    totals = np.zeros(N_ENVS)
+    obs = evaluation.reset()
+    while len(returns) < episodes:
+        actions, _ = model.predict(obs, deterministic=True)
+        obs, rewards, dones, _ = evaluation.step(actions)
+        totals += rewards
+        for i in np.flatnonzero(dones):
+            returns.append(float(totals[i]))
+            totals[i] = 0.0
+    return statistics.fmean(returns[:episodes])
+
+
+def summary(values: list[float]) -> str:
+    spread = statistics.stdev(values) if len(values) > 1 else 0.0
+    return f"{statistics.fmean(values):7.1f} ± {spread:5.1f}"
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--gp-runs", type=int, default=3, help="independent GP runs (seeds 1..)")
+    parser.add_argument("--seeds", type=int, default=3, help="PPO seeds per observation")
+    parser.add_argument("--timesteps", type=int, default=50_000, help="PPO steps per training")
+    parser.add_argument("--episodes", type=int, default=20, help="evaluation episodes")
+    parser.add_argument("--population", type=int, default=30)
+    parser.add_argument("--generations", type=int, default=8)
+    options = parser.parse_args()
+    start = time.monotonic()
+    seeds = range(options.seeds)
+    rows: list[tuple[str, list[float]]] = []
+    for normalise, name in ((False, "raw observation"), (True, "raw observation, VecNormalize")):
+        scores = [
+            train_and_evaluate(None, s, options.timesteps, options.episodes, normalise)
+            for s in seeds
+        ]
+        rows.append((name, scores))
+    for gp_seed in range(1, options.gp_runs + 1):
+        features = discover(gp_seed, options.population, options.generations)
+        print(f"GP run {gp_seed}'s features:\n{features.show()}", flush=True)
+        scores = [
+            train_and_evaluate(features, s, options.timesteps, options.episodes, False)
+            for s in seeds
+        ]
+        rows.append((f"features of GP run {gp_seed} ({features.n_features})", scores))
+    print(
+        f"\nPPO, {options.timesteps} steps, {N_ENVS} environments, seeds 0-{options.seeds - 1}; "
+        f"mean return of {options.episodes} deterministic episodes (max 500), mean ± sd over "
+        "seeds:"
+    )
+    for name, scores in rows:
+        each = ", ".join(f"{v:.1f}" for v in scores)
+        print(f"  {name:40s} {summary(scores)}   ({each})")
+    print(f"took {time.monotonic() - start:.0f} s")
+
+
+if __name__ == "__main__":
+    main()
