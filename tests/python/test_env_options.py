@@ -62,13 +62,13 @@ def test_a_nan_action_is_refused(env_id):
     env = gym.make(env_id)
     env.reset(seed=0)
     state = gpfd_env(env).state
-    nan = np.full(env.action_space.shape, np.nan)
+    nan = np.full(gpfd_env(env).action_space.sample().shape, np.nan)
     with pytest.raises(ValueError, match="is NaN; an action is a number"):
         env.step(nan)
     assert np.array_equal(gpfd_env(env).state, state)  # Nothing moved.
     vector = gym.make_vec(env_id, num_envs=3)
     vector.reset(seed=0)
-    actions = np.zeros(vector.action_space.shape)
+    actions = np.zeros_like(vector.action_space.sample())
     actions[1] = np.nan
     with pytest.raises(ValueError, match="action of environment 1"):
         vector.step(actions)

@@ -117,7 +117,8 @@ def assert_equals_sync_vector_env(env_id, n, params, mode, steps, seed):
     theirs = SyncVectorEnv(
         [lambda: gym.make(env_id, **params) for _ in range(n)], autoreset_mode=mode
     )
-    got_reset, want_reset = ours.reset(seed=seed), theirs.reset(seed=seed)
+    got_reset = ours.reset(seed=seed)
+    want_reset: tuple[Any, ...] = theirs.reset(seed=seed)
     assert_same(got_reset[0], want_reset[0], "reset")
     assert_same_info(got_reset[1], want_reset[1], "reset info")
     theirs.action_space.seed(seed)
