@@ -148,7 +148,7 @@ void stepBatch(benchmark::State& state, const std::string& name, const Params& p
   for (std::size_t i = 0; i < actions.size(); ++i) {
     const std::size_t c = (i / lanes) % components;
     actions[i] = space.continuous() ? rng.uniform(space.low[c], space.high[c])
-                                    : static_cast<double>(rng.below(space.choices));
+                                    : static_cast<double>(rng.below(space.choices.front()));
   }
   BatchBuffers io{lanes,          lanes,          states.data(),     nullptr,
                   elapsed.data(), rewards.data(), terminated.data(), truncated.data()};

@@ -20,7 +20,7 @@ std::string describeActions(const env::ActionSpace& space) {
     return "continuous: " + fmt::format("{}", fmt::join(parts, ", "));
   }
   if (space.components == 1) {
-    return fmt::format("discrete: {} in 0..{}", space.names.at(0), space.choices - 1);
+    return fmt::format("discrete: {} in 0..{}", space.names.at(0), space.choices.front() - 1);
   }
   return fmt::format("discrete: ({}), legal values depend on the state",
                      fmt::join(space.names, ", "));

@@ -4,7 +4,9 @@ The core is gpfd's C++ library; this package is a thin front over it:
 
 - ``FeatureSet``: discovered features, JIT-compiled, callable on NumPy observations.
 - ``gpfd/Acrobot-v0``, ``gpfd/CartPole-v0``, ``gpfd/Swimmer-v0``, ``gpfd/Tetris-v0``: gpfd's
-  environments in Gymnasium (``gymnasium.make``, ``gymnasium.make_vec``), registered on import.
+  environments in Gymnasium (``gymnasium.make``, ``gymnasium.make_vec``), registered on import;
+  ``gpfd/GymnasiumCartPole-v1``: Gymnasium's CartPole-v1 task (two pushes, 500 steps), where
+  ``gpfd/CartPole-v0`` defaults to a continuous force and 1000 steps.
 - ``wrappers.FeatureObservation``: a Gymnasium wrapper that shows an agent the features.
 - ``evolve``, ``fitness``, ``assess``, ``load_run``: discovery, GP's fitness, the test protocol and
   results directories, as ``gpfd evolve`` and ``gpfd assess`` run them; ``evolve`` also runs on any

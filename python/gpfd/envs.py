@@ -32,6 +32,15 @@ _IDS = {
 }
 
 
+# Gymnasium's tasks that a gpfd environment reproduces with some keywords, under ids of their own:
+# id -> (gpfd environment, keywords, Gymnasium's reward threshold). gpfd/GymnasiumCartPole-v1 is
+# Gymnasium's CartPole-v1 (two pushes, 500 steps; the same trajectories bit for bit), where
+# gpfd/CartPole-v0 is gpfd's default task (a continuous force, 1000 steps).
+TASKS: dict[str, tuple[str, dict[str, Any], float]] = {
+    "gpfd/GymnasiumCartPole-v1": ("cartpole", {"actions": "discrete", "max_steps": 500}, 475.0),
+}
+
+
 def gym_id(name: str) -> str:
     """The Gymnasium id of a gpfd environment."""
     return _IDS.get(name) or f"gpfd/{name[:1].upper()}{name[1:]}-v0"
@@ -59,24 +68,26 @@ def observation_space(core: _core.EnvBatch) -> spaces.Box:
 
 
 def action_space(core: _core.EnvBatch) -> spaces.Space:
-    """Discrete(n) for a choice, MultiDiscrete([4, cols]) for Tetris' (orientation, column), a
-    float64 Box for continuous actions."""
-    if core.action_kind == "discrete":
-        return spaces.Discrete(core.action_choices)
-    if core.action_kind == "tetris":
-        assert core.tetris_columns is not None  # Set for Tetris.
-        return spaces.MultiDiscrete([4, core.tetris_columns])
-    low = np.asarray(core.action_low, dtype=np.float64)
-    high = np.asarray(core.action_high, dtype=np.float64)
-    return spaces.Box(low, high, dtype=np.float64)
+    """From the environment's action space alone: a float64 Box for continuous actions,
+    Discrete(n) for a discrete action of one component, MultiDiscrete(choices) for one of several
+    (Tetris: (orientation, column))."""
+    choices = list(core.action_choices)
+    if not choices:
+        low = np.asarray(core.action_low, dtype=np.float64)
+        high = np.asarray(core.action_high, dtype=np.float64)
+        return spaces.Box(low, high, dtype=np.float64)
+    if len(choices) == 1:
+        return spaces.Discrete(choices[0])
+    return spaces.MultiDiscrete(choices)
 
 
 class GpfdEnv(gym.Env):
     """One of gpfd's environments (``gpfd_env``: its name in ``gpfd envs``), stepped in C++.
 
-    Tetris: an action is (orientation, column); one that is not a legal placement of the current
-    piece is mapped to the nearest legal one (orientation modulo the piece's orientations, column
-    clipped). ``info["action_mask"]`` (4 x cols, bool) marks the legal ones and
+    Where the legal actions depend on the state (Tetris: an action is (orientation, column)), an
+    action that is not legal now is mapped to the nearest legal one (Tetris: orientation modulo the
+    piece's orientations, column clipped), and ``info["action_mask"]`` (bool, the shape of the
+    action space's choices: 4 x cols for Tetris) marks the legal ones; Tetris'
     :meth:`afterstates` lists every placement with the state it leads to.
     """
 
@@ -93,7 +104,7 @@ class GpfdEnv(gym.Env):
         self.params = dict(self._core.params)
         self.observation_space = observation_space(self._core)
         self.action_space = action_space(self._core)
-        self._tetris = self._core.action_kind == "tetris"
+        self._masked = self._core.state_dependent_actions
         self._seeded = False
 
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
@@ -143,7 +154,7 @@ class GpfdEnv(gym.Env):
         return self._core.afterstates(0)
 
     def _info(self) -> dict[str, Any]:
-        return {"action_mask": self._core.action_mask(0)} if self._tetris else {}
+        return {"action_mask": self._core.action_mask(0)} if self._masked else {}
 
 
 def register_all() -> None:
@@ -160,3 +171,12 @@ def register_all() -> None:
             vector_entry_point="gpfd.vector:GpfdVectorEnv",
             kwargs={"gpfd_env": name},
         )
+    for env_id, (name, params, threshold) in TASKS.items():
+        if env_id not in gym.registry:
+            gym.register(
+                id=env_id,
+                entry_point="gpfd.envs:GpfdEnv",
+                vector_entry_point="gpfd.vector:GpfdVectorEnv",
+                reward_threshold=threshold,
+                kwargs={"gpfd_env": name, **params},
+            )

@@ -2,12 +2,15 @@
 
 ``gymnasium.make_vec("gpfd/CartPole-v0", num_envs=64)`` makes one (the default vectorization mode
 of gpfd's ids); every environment keyword of ``gymnasium.make`` works here too, with
-``autoreset_mode`` (Gymnasium's AutoresetMode: next step, the default, same step, or disabled).
+``autoreset_mode`` (Gymnasium's AutoresetMode, or its value or name as a string: ``"NextStep"`` or
+``"next_step"``, the default, same step, or disabled).
 Cart-pole, Acrobot and the swimmer (up to 8 segments) step as lanes of gpfd's batched environment
 (structure of arrays, AVX2); the others, and any with ``engine="loop"``, one scalar environment
 after another. Both give the same numbers bit for bit.
 Instance i behaves exactly like ``gymnasium.make`` of the same id reset with seed + i and
-auto-reset by ``SyncVectorEnv``: the same observations, rewards and flags.
+auto-reset by ``SyncVectorEnv``: the same observations, rewards and flags, and the same infos
+(``action_mask`` with ``_action_mask`` where the legal actions depend on the state, as for Tetris;
+``final_obs`` and ``final_info`` with their masks under same-step autoreset).
 """
 
 from __future__ import annotations
@@ -29,6 +32,27 @@ _MODES = {
 }
 
 
+def parse_autoreset_mode(mode: str | AutoresetMode) -> AutoresetMode:
+    """Gymnasium's AutoresetMode from itself, its value ("SameStep") or its name in any case
+    ("same_step", "SAME_STEP"); ValueError naming the accepted ones otherwise."""
+    if isinstance(mode, AutoresetMode):
+        return mode
+    key = str(mode).replace("_", "").lower()
+    for known in AutoresetMode:
+        if key == known.value.lower():
+            return known
+    accepted = ", ".join(f"{m.value!r} ({m.name.lower()!r})" for m in AutoresetMode)
+    raise ValueError(f"autoreset_mode {mode!r} is not one of {accepted}")
+
+
+def with_mask(info: dict[str, Any], key: str, values: Any, present: np.ndarray) -> dict[str, Any]:
+    """info with ``key`` and its presence array ``_key``, as Gymnasium's vector environments
+    give a value that some instances report."""
+    info[key] = values
+    info[f"_{key}"] = present
+    return info
+
+
 class GpfdVectorEnv(VectorEnv):
     """N instances of the gpfd environment ``gpfd_env`` (see gpfd.envs.GpfdEnv)."""
 
@@ -47,7 +71,7 @@ class GpfdVectorEnv(VectorEnv):
         check_params(gpfd_env, params)
         render.check_mode(gym_id(gpfd_env), gpfd_env, render_mode)
         self.render_mode = render_mode
-        mode = AutoresetMode(autoreset_mode)
+        mode = parse_autoreset_mode(autoreset_mode)
         self._core = _core.EnvBatch(gpfd_env, params, int(num_envs), _MODES[mode], engine)
         self.engine = self._core.engine
         self.gpfd_name = gpfd_env
@@ -60,6 +84,7 @@ class GpfdVectorEnv(VectorEnv):
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
         self._seeded = np.zeros(self.num_envs, dtype=bool)
+        self._masked = self._core.state_dependent_actions
 
     def reset(self, *, seed: int | list[int | None] | None = None, options: dict | None = None):
         """seed: None, an int (instance i gets seed + i) or one seed (or None) per instance.
@@ -84,15 +109,33 @@ class GpfdVectorEnv(VectorEnv):
             elif not self._seeded[i]:
                 self._core.seed(i, int(self.np_random.integers(2**63)))
             self._seeded[i] = True
-        return self._core.reset(mask), {}
+        obs = self._core.reset(mask)
+        info: dict[str, Any] = {}
+        if self._masked:  # The instances reset report their legal actions; the rows of the others
+            present = np.ones(self.num_envs, dtype=bool) if mask is None else mask.copy()
+            masks = self._core.action_masks()  # are False, as SyncVectorEnv leaves them.
+            masks[~present] = False
+            with_mask(info, "action_mask", masks, present)
+        return obs, info
 
     def step(self, actions):
-        obs, rewards, terminated, truncated, final_obs, final_mask = self._core.step(
+        obs, rewards, terminated, truncated, final_obs, final_mask, final_legal = self._core.step(
             np.ascontiguousarray(actions, dtype=np.float64)
         )
         info: dict[str, Any] = {}
-        if final_mask is not None and final_mask.any():
-            info = {"final_obs": final_obs, "_final_obs": final_mask}
+        if final_mask is not None and final_mask.any():  # Same-step autoreset, as SyncVectorEnv.
+            rows = np.full(self.num_envs, None, dtype=object)
+            for i in np.flatnonzero(final_mask):
+                rows[i] = final_obs[i]
+            with_mask(info, "final_obs", rows, final_mask)
+            final_info: dict[str, Any] = {}
+            if final_legal is not None:
+                final_legal[~final_mask] = False
+                with_mask(final_info, "action_mask", final_legal, final_mask.copy())
+            with_mask(info, "final_info", final_info, final_mask.copy())
+        if self._masked:
+            present = np.ones(self.num_envs, dtype=bool)
+            with_mask(info, "action_mask", self._core.action_masks(), present)
         return obs, rewards, terminated, truncated, info
 
     def render(self) -> tuple[np.ndarray, ...] | None:

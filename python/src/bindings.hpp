@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <initializer_list>
+#include <span>
 #include <string>
 
 #include "gpfd/env/environment.hpp"
@@ -17,12 +18,16 @@ namespace nb = nanobind;
 
 // A new C-contiguous NumPy array of `shape` that owns its (uninitialised) memory.
 template <typename T>
-nb::ndarray<nb::numpy, T> newArray(std::initializer_list<std::size_t> shape) {
+nb::ndarray<nb::numpy, T> newArray(std::span<const std::size_t> shape) {
   std::size_t count = 1;
   for (std::size_t n : shape) count *= n;
   T* data = new T[count > 0 ? count : 1];
   nb::capsule owner(data, [](void* p) noexcept { delete[] static_cast<T*>(p); });
-  return nb::ndarray<nb::numpy, T>(data, shape.size(), shape.begin(), owner);
+  return nb::ndarray<nb::numpy, T>(data, shape.size(), shape.data(), owner);
+}
+template <typename T>
+nb::ndarray<nb::numpy, T> newArray(std::initializer_list<std::size_t> shape) {
+  return newArray<T>(std::span<const std::size_t>(shape.begin(), shape.size()));
 }
 
 // str(value), as Python prints it.
@@ -36,6 +41,9 @@ inline nb::module_ numpy() { return nb::module_::import_("numpy"); }
 // Environment parameters given as Python keywords, as the text the registry reads: str as is,
 // bool as true/false, int and float in shortest round-trip form. TypeError for anything else.
 Params paramsFromDict(const nb::dict& values, const std::string& where);
+// Parameter values as Python values of their declared types (ParamSpec::Type: float, int, bool;
+// str for text and for a name `specs` does not declare); paramsFromDict takes them back.
+nb::dict typedParams(const Params& params, const std::vector<ParamSpec>& specs);
 
 // The batched form of the environment registered from Python as `name`: its vector form, where
 // gpfd.vector_source finds one (python_vector_environment.cpp).

@@ -7,20 +7,17 @@
 #include <stdexcept>
 
 #include "gpfd/env/batch.hpp"
-#include "gpfd/env/tetris.hpp"
-#include "gpfd/env/tetromino.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::python {
 namespace {
 
-const env::Tetris& asTetris(const env::Environment& e) {
-  const auto* tetris = dynamic_cast<const env::Tetris*>(&e);
-  if (tetris == nullptr) throw InputError("not a Tetris environment", e.name());
-  return *tetris;
-}
-
 bool isWholeNumber(double v) { return std::isfinite(v) && v == std::floor(v); }
+
+// Component c's name in messages (a plug-in may leave the names out).
+std::string componentName(const env::ActionSpace& space, std::size_t c) {
+  return c < space.names.size() ? space.names[c] : fmt::format("action component {}", c);
+}
 
 }  // namespace
 
@@ -47,21 +44,22 @@ EnvBatch::EnvBatch(const std::string& name, const Params& params, std::size_t n,
   const env::Environment& first = *envs_.front();
   dim_ = first.stateDim();
   space_ = first.actionSpace();
-  if (dynamic_cast<const env::Tetris*>(&first) != nullptr) {
-    kind_ = ActionKind::Tetris;
-  } else if (space_.continuous()) {
-    kind_ = ActionKind::Continuous;
-  } else if (space_.components == 1) {
-    kind_ = ActionKind::Discrete;
-  } else {
-    throw InputError(
-        fmt::format("{} has a discrete action of {} components, which gpfd's Gymnasium "
-                    "environments cannot drive",
-                    name, space_.components),
-        name);
+  if (!space_.continuous() && space_.choices.size() != space_.components) {
+    throw InputError(fmt::format("{}'s discrete action has {} components but {} choice counts",
+                                 name, space_.components, space_.choices.size()),
+                     name + " action space");
   }
+  stateDependent_ = !space_.continuous() && first.hasStateDependentActions();
+  maskSize_ = space_.continuous() ? 0 : space_.discreteActions();
   action_.assign(space_.components, 0.0);
   auto batch = engine == Engine::Loop ? nullptr : env::makeBatchEnvironment(first);
+  if (batch && stateDependent_) {  // The legal actions are asked of each instance.
+    if (engine == Engine::Batched) {
+      throw InputError(name + "'s legal actions depend on the state: it steps on the loop engine",
+                       "engine");
+    }
+    batch.reset();
+  }
   if (batch) {
     // Every lane starts where a freshly made instance does (its state before any reset).
     lanes_ = std::make_unique<BatchLanes>(std::move(batch), n, first.state());
@@ -117,36 +115,48 @@ void EnvBatch::reset(const bool* mask, double* obs) {
   }
 }
 
+void EnvBatch::legalActions(std::size_t i, bool* out) const {
+  if (i >= size()) throw std::out_of_range(fmt::format("no environment {} in {}", i, size()));
+  if (space_.continuous()) {
+    throw InputError(
+        prototype().name() + " has continuous actions: every value in the box is legal",
+        "action_mask");
+  }
+  std::vector<std::uint8_t> mask(maskSize_, 1);
+  if (stateDependent_) envs_[i]->legalActionMask(mask);
+  std::copy(mask.begin(), mask.end(), out);
+}
+
 void EnvBatch::checkAction(std::size_t i, const double* action) const {
   const auto where = [i] { return fmt::format("action of environment {}", i); };
-  switch (kind_) {
-    case ActionKind::Discrete:
-      if (!isWholeNumber(action[0]) || action[0] < 0 || action[0] >= space_.choices) {
-        throw InputError(fmt::format("a discrete action is an integer in 0..{}, got {}",
-                                     space_.choices - 1, action[0]),
+  for (std::size_t c = 0; c < space_.components; ++c) {
+    const double a = action[c];
+    if (space_.continuous()) {
+      if (std::isnan(a)) {
+        throw InputError(fmt::format("{} is NaN; an action is a number", componentName(space_, c)),
                          where());
       }
-      break;
-    case ActionKind::Tetris:
-      for (std::size_t c = 0; c < 2; ++c) {
-        if (!isWholeNumber(action[c]) || action[c] < 0) {
-          throw InputError(
-              fmt::format("Tetris actions are (orientation, column), non-negative integers; got "
-                          "({}, {})",
-                          action[0], action[1]),
-              where());
-        }
-      }
-      break;
-    case ActionKind::Continuous:
-      break;  // NaN counts as 0 and the environment clips to the bounds.
+      continue;
+    }
+    const int choices = space_.choices[c];
+    if (!isWholeNumber(a) || a < 0) {
+      throw InputError(
+          fmt::format("{} is a non-negative integer, got {}", componentName(space_, c), a),
+          where());
+    }
+    // Where the legal actions depend on the state, the environment maps any to a legal one.
+    if (!stateDependent_ && a >= choices) {
+      throw InputError(fmt::format("{} is an integer in 0..{}, got {}", componentName(space_, c),
+                                   choices - 1, a),
+                       where());
+    }
   }
 }
 
 env::StepResult EnvBatch::stepInstance(std::size_t i, const double* action) {
   if (lanes_) return lanes_->result(i);  // Stepped with every lane before.
-  if (kind_ == ActionKind::Tetris) {
-    legalTetrisAction(*envs_[i], action, action_.data());
+  if (stateDependent_) {
+    envs_[i]->nearestLegalAction(std::span<const double>(action, space_.components), action_);
     action = action_.data();
   }
   return envs_[i]->step(std::span<const double>(action, space_.components));
@@ -179,35 +189,13 @@ void EnvBatch::step(const double* actions, const BatchStep& out) {
     const bool ended = result.terminated || result.truncated;
     if (ended && autoreset_ == Autoreset::SameStep) {
       writeState(i, out.finalObs + i * dim_);
+      if (out.finalLegal != nullptr) legalActions(i, out.finalLegal + i * maskSize_);
       out.finalMask[i] = true;
       resetInstance(i);
     }
     ended_[i] = ended ? 1 : 0;
     writeState(i, row);
   }
-}
-
-void legalTetrisAction(const env::Environment& e, const double* action, double* legal) {
-  const env::Tetris& tetris = asTetris(e);
-  const auto orientations = env::orientationsOf(tetris.piece());
-  const auto count = static_cast<double>(orientations.size());
-  const double orientation = std::fmod(action[0], count);
-  const int width = orientations[static_cast<std::size_t>(orientation)].width;
-  legal[0] = orientation;
-  legal[1] = std::min(action[1], static_cast<double>(tetris.config().cols - width));
-}
-
-std::vector<char> tetrisActionMask(const env::Environment& e) {
-  const env::Tetris& tetris = asTetris(e);
-  const int cols = tetris.config().cols;
-  std::vector<char> mask(static_cast<std::size_t>(4 * cols), 0);
-  const auto orientations = env::orientationsOf(tetris.piece());
-  for (std::size_t o = 0; o < orientations.size(); ++o) {
-    for (int c = 0; c + orientations[o].width <= cols; ++c) {
-      mask[o * static_cast<std::size_t>(cols) + static_cast<std::size_t>(c)] = 1;
-    }
-  }
-  return mask;
 }
 
 }  // namespace gpfd::python

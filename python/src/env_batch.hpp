@@ -34,13 +34,6 @@ enum class Engine {
 };
 Engine parseEngine(const std::string& name);  // auto | loop | batched.
 
-// How an action given as numbers reaches the environment.
-enum class ActionKind {
-  Continuous,  // components values, clipped by the environment.
-  Discrete,    // One integer in [0, choices).
-  Tetris,      // (orientation, column), mapped to the nearest legal placement (legalTetrisAction).
-};
-
 // Caller-owned output of one step of the batch.
 struct BatchStep {
   double* obs = nullptr;       // n x stateDim
@@ -49,12 +42,15 @@ struct BatchStep {
   bool* truncated = nullptr;   // n
   double* finalObs = nullptr;  // SameStep: n x stateDim, the last observation of ended episodes
   bool* finalMask = nullptr;   // SameStep: n, the rows of finalObs that are set
+  // SameStep, optional: n x actionMaskSize(), the legal actions at finalObs' rows (those set).
+  bool* finalLegal = nullptr;
 };
 
 class EnvBatch {
  public:
-  // InputError for an unknown environment or parameter, or an action space that cannot be driven
-  // by numbers (a discrete space of several components other than Tetris).
+  // InputError for an unknown environment or parameter, or engine Batched for an environment
+  // without a batched form or whose legal actions depend on the state (they are asked of each
+  // instance, which only the loop path has).
   EnvBatch(const std::string& name, const Params& params, std::size_t n, Autoreset autoreset,
            Engine engine = Engine::Auto);
   EnvBatch(const EnvBatch&) = delete;
@@ -64,7 +60,14 @@ class EnvBatch {
   bool batched() const { return lanes_ != nullptr; }
   std::size_t stateDim() const { return dim_; }
   std::size_t actionComponents() const { return space_.components; }
-  ActionKind actionKind() const { return kind_; }
+  // Whether the legal discrete actions depend on the state (Environment::
+  // hasStateDependentActions): then an action is mapped to the nearest legal one before it steps.
+  bool stateDependentActions() const { return stateDependent_; }
+  // Discrete spaces: the number of discrete actions (the product of the choices); 0 otherwise.
+  std::size_t actionMaskSize() const { return maskSize_; }
+  // Instance i's legal actions now (actionMaskSize() flags, row-major over the components); all
+  // legal where they do not depend on the state. InputError for continuous actions.
+  void legalActions(std::size_t i, bool* out) const;
   Autoreset autoreset() const { return autoreset_; }
   const env::ActionSpace& actionSpace() const { return space_; }
   // The environment's name, parameters, state names and spaces (instances' states: state()).
@@ -86,7 +89,11 @@ class EnvBatch {
   // observation to obs (n x stateDim).
   void reset(const bool* mask, double* obs);
   // Applies actions (n x actionComponents) to every instance. Checks every action before it
-  // steps any instance (InputError naming the instance and the value).
+  // steps any instance (InputError naming the instance and the value): a discrete component is a
+  // whole number in [0, choices) (any whole number >= 0 where the legal actions depend on the
+  // state: the environment maps it to the nearest legal action); a continuous one is a number,
+  // not NaN (Gymnasium's environments refuse invalid actions; the environment itself would take
+  // NaN as 0), clipped by the environment.
   void step(const double* actions, const BatchStep& out);
 
   // Pickling (env_batch_state.cpp): every instance's whole dynamic state as words
@@ -111,18 +118,11 @@ class EnvBatch {
   std::vector<Rng> rngs_;
   std::vector<char> ended_;  // NextStep: the episode ended at the previous step.
   env::ActionSpace space_;
-  ActionKind kind_ = ActionKind::Continuous;
+  bool stateDependent_ = false;
+  std::size_t maskSize_ = 0;
   Autoreset autoreset_;
   std::size_t dim_ = 0;
   std::vector<double> action_;  // One instance's action, after mapping.
 };
-
-// The legal placement nearest to (orientation, column) for Tetris' current piece: the orientation
-// taken modulo the piece's orientation count, the column clipped to where that orientation fits.
-// InputError for a negative or fractional component.
-void legalTetrisAction(const env::Environment& tetris, const double* action, double* legal);
-
-// Tetris' legal placements as a mask of orientations (4) x columns, row-major.
-std::vector<char> tetrisActionMask(const env::Environment& tetris);
 
 }  // namespace gpfd::python

@@ -20,16 +20,26 @@ using namespace nb::literals;
 using ReadArray = nb::ndarray<const double, nb::c_contig, nb::device::cpu>;
 using MaskArray = nb::ndarray<const bool, nb::c_contig, nb::device::cpu>;
 
-const char* kindName(ActionKind kind) {
-  switch (kind) {
-    case ActionKind::Discrete:
-      return "discrete";
-    case ActionKind::Tetris:
-      return "tetris";
-    case ActionKind::Continuous:
-      break;
+// Instance i's legal actions, shaped as the action space's choices (Tetris: orientations x
+// columns).
+nb::ndarray<nb::numpy, bool> legalActions(const EnvBatch& batch, std::size_t i) {
+  const auto& choices = batch.actionSpace().choices;
+  std::vector<std::size_t> shape(choices.begin(), choices.end());
+  auto out = newArray<bool>(shape);
+  batch.legalActions(i, out.data());
+  return out;
+}
+
+// Every instance's legal actions: n x the choices.
+nb::ndarray<nb::numpy, bool> allLegalActions(const EnvBatch& batch) {
+  const auto& choices = batch.actionSpace().choices;
+  std::vector<std::size_t> shape{batch.size()};
+  shape.insert(shape.end(), choices.begin(), choices.end());
+  auto out = newArray<bool>(shape);
+  for (std::size_t i = 0; i < batch.size(); ++i) {
+    batch.legalActions(i, out.data() + i * batch.actionMaskSize());
   }
-  return "continuous";
+  return out;
 }
 
 // One action as actionComponents() doubles: a number, or anything NumPy reads as that many.
@@ -76,7 +86,7 @@ nb::tuple stepAll(EnvBatch& batch, const ReadArray& actions) {
   auto terminated = newArray<bool>({n});
   auto truncated = newArray<bool>({n});
   BatchStep out{obs.data(), rewards.data(), terminated.data(), truncated.data()};
-  nb::object finalObs = nb::none(), finalMask = nb::none();
+  nb::object finalObs = nb::none(), finalMask = nb::none(), finalLegal = nb::none();
   if (batch.autoreset() == Autoreset::SameStep) {
     auto lastObs = newArray<double>({n, dim});
     auto lastMask = newArray<bool>({n});
@@ -84,12 +94,17 @@ nb::tuple stepAll(EnvBatch& batch, const ReadArray& actions) {
     out.finalMask = lastMask.data();
     finalObs = nb::cast(lastObs);
     finalMask = nb::cast(lastMask);
+    if (batch.stateDependentActions()) {
+      auto legal = allLegalActions(batch);  // Shaped n x choices; the step overwrites its rows.
+      out.finalLegal = legal.data();
+      finalLegal = nb::cast(legal);
+    }
   }
   {
     nb::gil_scoped_release release;
     batch.step(actions.data(), out);
   }
-  return nb::make_tuple(obs, rewards, terminated, truncated, finalObs, finalMask);
+  return nb::make_tuple(obs, rewards, terminated, truncated, finalObs, finalMask, finalLegal);
 }
 
 nb::dict afterstates(const EnvBatch& batch, std::size_t i) {
@@ -140,20 +155,24 @@ void bindEnvironments(nb::module_& m) {
           "How the instances step: batched (one call of the batched environment) or loop.")
       .def_prop_ro("name", [](const EnvBatch& b) { return b.prototype().name(); })
       .def_prop_ro(
-          "params", [](const EnvBatch& b) { return b.prototype().params(); },
-          "Every parameter with its value, defaults filled in.")
+          "params",
+          [](const EnvBatch& b) {
+            const env::Environment& e = b.prototype();
+            return typedParams(e.params(), env::Registry::global().info(e.name()).params);
+          },
+          "Every parameter with its value (float, int, bool or str, as declared), defaults "
+          "filled in.")
       .def_prop_ro("state_names", [](const EnvBatch& b) { return b.prototype().stateNames(); })
-      .def_prop_ro("action_kind", [](const EnvBatch& b) { return kindName(b.actionKind()); })
       .def_prop_ro("action_components", &EnvBatch::actionComponents)
-      .def_prop_ro("action_choices", [](const EnvBatch& b) { return b.actionSpace().choices; })
+      .def_prop_ro(
+          "action_choices", [](const EnvBatch& b) { return b.actionSpace().choices; },
+          "The number of choices of each discrete action component; empty for continuous "
+          "actions.")
+      .def_prop_ro("state_dependent_actions", &EnvBatch::stateDependentActions,
+                   "Whether the legal actions depend on the state (action_mask says which).")
       .def_prop_ro("action_low", [](const EnvBatch& b) { return b.actionSpace().low; })
       .def_prop_ro("action_high", [](const EnvBatch& b) { return b.actionSpace().high; })
       .def_prop_ro("action_names", [](const EnvBatch& b) { return b.actionSpace().names; })
-      .def_prop_ro("tetris_columns",
-                   [](const EnvBatch& b) -> std::optional<int> {
-                     const auto* t = dynamic_cast<const env::Tetris*>(&b.prototype());
-                     return t ? std::optional<int>(t->config().cols) : std::nullopt;
-                   })
       .def("seed", &EnvBatch::seed, nb::arg("index"), nb::arg("seed"))
       .def(
           "reset",
@@ -176,10 +195,10 @@ void bindEnvironments(nb::module_& m) {
             return obs;
           },
           "Resets a batch of one and returns its observation.")
-      .def(
-          "step", &stepAll, nb::arg("actions"),
-          "Steps every instance: (obs, rewards, terminated, truncated, final_obs, final_mask); the "
-          "last two are None unless autoreset is same_step.")
+      .def("step", &stepAll, nb::arg("actions"),
+           "Steps every instance: (obs, rewards, terminated, truncated, final_obs, final_mask, "
+           "final_action_masks); the last three are None unless autoreset is same_step, the last "
+           "unless the legal actions also depend on the state.")
       .def("step_one", &stepOne, nb::arg("action"),
            "Steps a batch of one: (obs, reward, terminated, truncated).")
       .def(
@@ -196,16 +215,10 @@ void bindEnvironments(nb::module_& m) {
             b.setState(i, std::span<const double>(state.data(), state.size()));
           },
           nb::arg("index"), nb::arg("state"))
-      .def(
-          "action_mask",
-          [](const EnvBatch& b, std::size_t i) {
-            const env::Environment* instance = b.scalarInstance(i);
-            const auto mask = tetrisActionMask(instance ? *instance : b.prototype());
-            auto out = newArray<bool>({4, mask.size() / 4});
-            for (std::size_t j = 0; j < mask.size(); ++j) out.data()[j] = mask[j] != 0;
-            return out;
-          },
-          nb::arg("index") = 0, "Tetris: the legal (orientation, column) pairs.")
+      .def("action_mask", &legalActions, nb::arg("index") = 0,
+           "Discrete actions: instance index's legal ones now (bool, shaped as action_choices).")
+      .def("action_masks", &allLegalActions,
+           "Discrete actions: every instance's legal ones now (num_envs x action_choices).")
       .def("afterstates", &afterstates, nb::arg("index") = 0,
            "Tetris: every legal placement with the state it leads to.");
 }

@@ -4,6 +4,8 @@
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
+#include <algorithm>
+
 #include "bindings.hpp"
 #include "gpfd/util/error.hpp"
 #include "gpfd/util/number.hpp"
@@ -76,6 +78,31 @@ Params paramsFromDict(const nb::dict& values, const std::string& where) {
     params[name] = text;
   }
   return params;
+}
+
+nb::dict typedParams(const Params& params, const std::vector<ParamSpec>& specs) {
+  nb::dict out;
+  for (const auto& [name, text] : params) {
+    const auto spec = std::find_if(specs.begin(), specs.end(),
+                                   [&](const ParamSpec& s) { return s.name == name; });
+    const ParamSpec::Type type = spec == specs.end() ? ParamSpec::Type::Text : spec->type;
+    const char* key = name.c_str();
+    switch (type) {
+      case ParamSpec::Type::Real:
+        out[key] = parseNumber(text, name);
+        break;
+      case ParamSpec::Type::Integer:
+        out[key] = parseInteger(text, name);
+        break;
+      case ParamSpec::Type::Flag:
+        out[key] = parseFlag(text, name);
+        break;
+      case ParamSpec::Type::Text:
+        out[key] = text;
+        break;
+    }
+  }
+  return out;
 }
 
 NB_MODULE(_core, m) {

@@ -29,7 +29,7 @@ class PythonEnvironment final : public env::Environment {
     state_.assign(dim, 0.0);
     if (nb::cast<std::string>(adapter_.attr("action_kind")) == "discrete") {
       space_.kind = env::ActionSpace::Kind::Discrete;
-      space_.choices = nb::cast<int>(adapter_.attr("choices"));
+      space_.choices = {nb::cast<int>(adapter_.attr("choices"))};
       space_.names = {"action"};
     } else {
       space_.low = nb::cast<std::vector<double>>(adapter_.attr("low"));

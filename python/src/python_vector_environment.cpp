@@ -469,7 +469,7 @@ env::BatchForm pythonVectorForm(const std::string& name) {
                      env::BatchIsa isa) -> std::unique_ptr<env::BatchEnvironment> {
     auto scalar = std::make_unique<ScalarShape>(prototype);
     const env::ActionSpace space = scalar->actionSpace();
-    const int choices = space.continuous() ? 0 : space.choices;
+    const int choices = space.continuous() ? 0 : space.choices.front();  // One component.
     nb::gil_scoped_acquire gil;
     nb::object adapter =
         nb::module_::import_("gpfd.vector_source")

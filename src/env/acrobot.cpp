@@ -66,7 +66,7 @@ ActionSpace Acrobot::actionSpace() const {
   space.names = {"torque"};
   if (config_.discrete) {
     space.kind = ActionSpace::Kind::Discrete;
-    space.choices = 3;
+    space.choices = {3};
   } else {
     space.low = {-config_.maxTorque};
     space.high = {config_.maxTorque};

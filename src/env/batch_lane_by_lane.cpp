@@ -27,7 +27,7 @@ class LaneByLaneBatch final : public BatchEnvironment {
 
   void step(const BatchBuffers& io) const override {
     if (!space_.continuous() && space_.components == 1) {
-      batch::checkChoices(io, space_.choices, scalar().name());
+      batch::checkChoices(io, space_.choices.front(), scalar().name());
     }
     for (std::size_t l = 0; l < io.lanes; ++l) {
       Environment& env = instance(l);

@@ -58,7 +58,7 @@ ActionSpace CartPole::actionSpace() const {
   space.names = {"force"};
   if (config_.discrete) {
     space.kind = ActionSpace::Kind::Discrete;
-    space.choices = 2;
+    space.choices = {2};
   } else {
     space.low = {-config_.maxForce};
     space.high = {config_.maxForce};

@@ -58,7 +58,7 @@ void Environment::sampleAction(Rng& rng, std::span<double> action) const {
       action[i] = rng.uniform(space.low[i], space.high[i]);
     }
   } else {
-    action[0] = static_cast<double>(rng.below(static_cast<std::uint64_t>(space.choices)));
+    action[0] = static_cast<double>(rng.below(static_cast<std::uint64_t>(space.choices.at(0))));
   }
 }
 

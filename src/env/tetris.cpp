@@ -55,6 +55,7 @@ ActionSpace Tetris::actionSpace() const {
   ActionSpace space;
   space.kind = ActionSpace::Kind::Discrete;
   space.components = 2;
+  space.choices = {kMaxOrientations, config_.cols};
   space.names = {"orientation", "column"};
   return space;
 }
@@ -229,6 +230,30 @@ void Tetris::sampleAction(Rng& rng, std::span<double> action) const {
     }
     pick -= columns;
   }
+}
+
+void Tetris::legalActionMask(std::span<std::uint8_t> mask) const {
+  const auto cols = static_cast<std::size_t>(config_.cols);
+  if (mask.size() != static_cast<std::size_t>(kMaxOrientations) * cols) {
+    throw InputError(fmt::format("tetris has {} x {} actions, got a mask of {}", kMaxOrientations,
+                                 cols, mask.size()),
+                     "tetris action mask");
+  }
+  std::fill(mask.begin(), mask.end(), std::uint8_t{0});
+  const auto orientations = orientationsOf(piece_);
+  for (std::size_t o = 0; o < orientations.size(); ++o) {
+    const auto width = static_cast<std::size_t>(orientations[o].width);
+    std::fill_n(mask.begin() + static_cast<std::ptrdiff_t>(o * cols), cols - width + 1,
+                std::uint8_t{1});
+  }
+}
+
+void Tetris::nearestLegalAction(std::span<const double> action, std::span<double> legal) const {
+  const auto orientations = orientationsOf(piece_);
+  const double orientation = std::fmod(action[0], static_cast<double>(orientations.size()));
+  const int width = orientations[static_cast<std::size_t>(orientation)].width;
+  legal[0] = orientation;
+  legal[1] = std::min(action[1], static_cast<double>(config_.cols - width));
 }
 
 void Tetris::afterstatesReference(TetrisAfterstates& out) const {

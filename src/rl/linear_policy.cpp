@@ -27,11 +27,11 @@ LinearPolicy::LinearPolicy(const env::ActionSpace& space, std::size_t featureDim
       throw InputError("the policy's standard deviations must be positive, min <= max", "policy");
     }
   } else {
-    if (space.components != 1 || space.choices < 2) {
+    if (space.components != 1 || space.choices.front() < 2) {
       throw InputError("a softmax policy needs a one-component discrete action with >= 2 choices",
                        "policy");
     }
-    outputs_ = static_cast<std::size_t>(space.choices);
+    outputs_ = static_cast<std::size_t>(space.choices.front());
   }
   const std::size_t extra = (continuous_ && options.learnStd) ? outputs_ : 0;
   params_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(outputs_ * featureDim_ + extra));

@@ -126,7 +126,8 @@ LearnerInfo policyGradientLearner() {
           "actions that are a box of continuous values or one discrete choice",
           [](env::Environment& env) {
             const env::ActionSpace space = env.actionSpace();
-            const bool ok = space.continuous() || (space.components == 1 && space.choices >= 2);
+            const bool ok =
+                space.continuous() || (space.components == 1 && space.choices.front() >= 2);
             return std::string(ok ? "" : "its actions are neither a box nor one discrete choice");
           },
           "updates",

@@ -74,7 +74,7 @@ struct Lanes : BatchStorage {
 
 // A random action component: mostly legal, sometimes out of bounds or NaN (continuous).
 double randomComponent(const ActionSpace& space, std::size_t c, Rng& rng) {
-  if (!space.continuous()) return static_cast<double>(rng.below(space.choices));
+  if (!space.continuous()) return static_cast<double>(rng.below(space.choices.front()));
   const double r = rng.uniform();
   if (r < 0.05) return std::numeric_limits<double>::quiet_NaN();
   if (r < 0.15) return rng.uniform(-50.0, 50.0);

@@ -94,7 +94,7 @@ TEST(Acrobot, ClipsTorqueAndTakesNanAsZero) {
 TEST(Acrobot, DiscreteActionsAreMinusZeroPlusTorque) {
   Acrobot d(AcrobotConfig::fromParams({{"actions", "discrete"}, {"max_torque", "2"}}));
   Acrobot c(AcrobotConfig::fromParams({{"max_torque", "2"}}));
-  EXPECT_EQ(d.actionSpace().choices, 3);
+  EXPECT_EQ(d.actionSpace().choices, std::vector<int>{3});
   const std::vector<double> s{0.3, -0.2, 0.5, 0.1};
   for (int i = 0; i < 3; ++i) {
     d.setState(s);

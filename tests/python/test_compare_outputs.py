@@ -32,6 +32,7 @@ def test_timings_and_revisions_are_ignored(compare_outputs, tmp_path):
         {
             "run/generations.csv": "generation,best,seconds\n0,1.5,0.372\n",
             "run/run.json": '{"seed": 3, "revision": "442790eb0a9c", "seconds": 1.2}',
+            "repro/section.json": '{"text": "Compute time: GP runs 18 s (gpfd 442790eb0a9c)"}',
             "cp.stdout": "gen   0  best 1.5  2s  ETA 4m05s\n"
             "results in 3.2 s (gpfd 0.1.0 442790eb0a9c)\n",
         },
@@ -41,6 +42,7 @@ def test_timings_and_revisions_are_ignored(compare_outputs, tmp_path):
         {
             "run/generations.csv": "generation,best,seconds\n0,1.5,0.989\n",
             "run/run.json": '{"seed": 3, "revision": "576aeb7c0d1e-dirty", "seconds": 0.8}',
+            "repro/section.json": '{"text": "Compute time: GP runs 40 s (gpfd 576aeb7c0d1e)"}',
             "cp.stdout": "gen   0  best 1.5  1s  ETA 5m00s\n"
             "results in 2.9 s (gpfd 0.1.0 576aeb7c0d1e)\n",
         },

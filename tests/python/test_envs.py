@@ -63,14 +63,16 @@ def test_check_env_passes(env_id, params):
 def test_every_parameter_of_gpfd_envs_is_a_keyword(name):
     defaults = {p: default for p, default, _ in _core.env_params(name)}
     env = gym.make(gym_id(name), **defaults)
-    assert gpfd_env(env).params == defaults
+    # Every parameter, typed (test_env_options.py), as an environment made without keywords has.
+    assert sorted(gpfd_env(env).params) == sorted(defaults)
+    assert gpfd_env(env).params == gpfd_env(gym.make(gym_id(name))).params
     assert gpfd_env(env).gpfd_name == name
 
 
 def test_keyword_values_reach_the_environment():
     env = gym.make("gpfd/Swimmer-v0", segments=np.int64(4), dt=0.05, max_torque=2)
     assert env.observation_space.shape == (10,)
-    assert gpfd_env(env).params["dt"] == "0.05"
+    assert gpfd_env(env).params["dt"] == 0.05
     assert isinstance(env.action_space, gym.spaces.Box)
     assert env.action_space.high.tolist() == [2.0, 2.0, 2.0]
     assert gym.make("gpfd/CartPole-v0", actions="discrete").action_space == gym.spaces.Discrete(2)
@@ -160,7 +162,7 @@ def test_tetris_maps_actions_to_legal_placements():
     o = 3 % orientations
     c = int(np.flatnonzero(mask[o]).max()) if np.flatnonzero(mask[o]).max() < 7 else 7
     assert np.array_equal(clone.step(np.array([o, c]))[0], obs)
-    with pytest.raises(gpfd.InputError, match="non-negative integers"):
+    with pytest.raises(gpfd.InputError, match="orientation is a non-negative integer, got -1"):
         env.step(np.array([-1, 0]))
 
 

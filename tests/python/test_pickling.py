@@ -52,7 +52,8 @@ def vector_trace(envs, actions: list) -> list:
     out = []
     for action in actions:
         obs, rewards, terminated, truncated, info = envs.step(action)
-        final = bits(info["final_obs"]) if "final_obs" in info else b""
+        rows = info.get("final_obs", [])  # An object array: an observation or None per instance.
+        final = b"|".join(bits(row) for row in rows) + bits(info.get("action_mask"))
         out.append((bits(obs), bits(rewards), bits(terminated), bits(truncated), final))
     return out
 

@@ -28,14 +28,11 @@ def near_terminal(name, rng, dim):
 
 
 def random_actions(env, rng, n):
-    """Random legal discrete choices; continuous ones beyond the bounds (clipped) and some NaN
-    (taken as 0)."""
+    """Random legal discrete choices; continuous ones beyond the bounds (clipped)."""
     space = env.single_action_space
     if isinstance(space, gym.spaces.Discrete):
         return rng.integers(0, space.n, size=n)
-    actions = rng.uniform(-1.5, 1.5, size=(n, *space.shape)) * space.high
-    actions[rng.random(actions.shape) < 0.02] = np.nan
-    return actions
+    return rng.uniform(-1.5, 1.5, size=(n, *space.shape)) * space.high
 
 
 def assert_same(got, want, what):
@@ -74,11 +71,7 @@ def test_batched_engine_equals_the_loop_engine(name, params, mode):
         want = loop.step(actions)
         for i, what in enumerate(("obs", "rewards", "terminated", "truncated")):
             assert_same(got[i], want[i], f"{what} at step {t}")
-        assert got[4].keys() == want[4].keys()
-        if "_final_obs" in got[4]:  # Same-step autoreset; the rows outside the mask are unset.
-            mask = got[4]["_final_obs"]
-            assert_same(mask, want[4]["_final_obs"], f"final mask at step {t}")
-            assert_same(got[4]["final_obs"][mask], want[4]["final_obs"][mask], f"final at {t}")
+        assert_same_info(got[4], want[4], f"info at step {t}")  # final_obs under same-step.
         terminated += int(got[2].sum())
         truncated += int(got[3].sum())
         ended = got[2] | got[3]
@@ -97,14 +90,37 @@ def test_batched_engine_equals_the_loop_engine(name, params, mode):
         assert terminated > 0
 
 
+def assert_same_info(got, want, what):
+    """Infos as SyncVectorEnv gives them: the same keys, each value's presence array, stacked
+    arrays bit for bit, final_obs an object array (None where no episode ended), nested dicts
+    (final_info) alike."""
+    assert sorted(got) == sorted(want), what
+    for key, value in want.items():
+        mine = got[key]
+        if isinstance(value, dict):
+            assert_same_info(mine, value, f"{what}: {key}")
+        elif value.dtype == object:
+            assert mine.dtype == object, f"{what}: {key}"
+            for i, row in enumerate(value):
+                assert (row is None) == (mine[i] is None), f"{what}: {key}[{i}]"
+                if row is not None:
+                    assert_same(mine[i], row, f"{what}: {key}[{i}]")
+        else:
+            assert_same(mine, value, f"{what}: {key}")
+
+
 def assert_equals_sync_vector_env(env_id, n, params, mode, steps, seed):
     """gpfd's vector environment against N of gpfd's single Gymnasium environments, as Gymnasium
-    itself vectorises them, under the same random actions; returns gpfd's vector environment."""
+    itself vectorises them, under the same random actions: observations, rewards, flags and infos;
+    returns gpfd's vector environment."""
     ours = gym.make_vec(env_id, num_envs=n, autoreset_mode=mode, **params)
     theirs = SyncVectorEnv(
         [lambda: gym.make(env_id, **params) for _ in range(n)], autoreset_mode=mode
     )
-    assert_same(ours.reset(seed=seed)[0], theirs.reset(seed=seed)[0], "reset")
+    got_reset = ours.reset(seed=seed)
+    want_reset: tuple[Any, ...] = theirs.reset(seed=seed)
+    assert_same(got_reset[0], want_reset[0], "reset")
+    assert_same_info(got_reset[1], want_reset[1], "reset info")
     theirs.action_space.seed(seed)
     ended = 0
     for t in range(steps):
@@ -113,15 +129,13 @@ def assert_equals_sync_vector_env(env_id, n, params, mode, steps, seed):
         want: tuple[Any, ...] = theirs.step(action)  # SyncVectorEnv leaves its types open.
         for i in range(4):
             assert_same(np.asarray(got[i]), np.asarray(want[i]), f"output {i} at step {t}")
-        if mode == AutoresetMode.SAME_STEP and "final_obs" in got[4]:
-            mask = got[4]["_final_obs"]
-            assert np.array_equal(mask, want[4]["_final_obs"])
-            assert_same(got[4]["final_obs"][mask], np.stack(want[4]["final_obs"][mask]), "final")
+        assert_same_info(got[4], want[4], f"info at step {t}")
         done = got[2] | got[3]
         ended += int(done.sum())
         if mode == AutoresetMode.DISABLED and done.any():
-            ours.reset(options={"reset_mask": done})
-            theirs.reset(options={"reset_mask": done})
+            got_reset = ours.reset(options={"reset_mask": done})
+            want_reset = theirs.reset(options={"reset_mask": done})
+            assert_same_info(got_reset[1], want_reset[1], f"reset info at step {t}")
     assert ended > 0
     return ours.unwrapped
 
@@ -183,8 +197,7 @@ def test_set_state_and_errors_on_the_batched_engine():
     assert np.array_equal(env.states, before)  # Nothing moved.
     with pytest.raises(gpfd.InputError, match="afterstates exist for Tetris only"):
         env._core.afterstates(0)
-    with pytest.raises(gpfd.InputError, match="not a Tetris environment"):
-        env._core.action_mask(0)
+    assert env._core.action_mask(0).tolist() == [True, True]  # Not state-dependent: all legal.
 
 
 @pytest.mark.parametrize("mode", MODES, ids=lambda m: m.value)
@@ -195,3 +208,16 @@ def test_tetris_steps_on_the_loop_engine(mode):
     single = gpfd_env(gym.make("gpfd/Tetris-v0", **params))
     single.reset(seed=1)
     assert len(single.afterstates()["actions"]) > 0
+
+
+def test_tetris_vector_info_has_the_action_mask():
+    """Issue 27.6: the vector environment's reset gave {}."""
+    envs = gym.make_vec("gpfd/Tetris-v0", num_envs=2)
+    _, info = envs.reset(seed=0)
+    assert info["action_mask"].shape == (2, 4, 8) and info["action_mask"].dtype == bool
+    assert info["_action_mask"].tolist() == [True, True]
+    single = gym.make("gpfd/Tetris-v0")
+    assert np.array_equal(info["action_mask"][1], single.reset(seed=1)[1]["action_mask"])
+    _, info = envs.reset(options={"reset_mask": np.array([False, True])})
+    assert info["_action_mask"].tolist() == [False, True]
+    assert not info["action_mask"][0].any()  # As SyncVectorEnv leaves an instance not reset.

@@ -69,7 +69,7 @@ TEST(PolicyGradient, EstimateMatchesFiniteDifferences) {
 TEST(PolicyGradient, SoftmaxLogLikelihoodGradientMatchesFiniteDifferences) {
   env::ActionSpace space;
   space.kind = env::ActionSpace::Kind::Discrete;
-  space.choices = 3;
+  space.choices = {3};
   LinearPolicy policy(space, 2, {});
   policy.parameters() << 0.3, -0.2, 0.1, 0.5, -0.4, 0.2;
   const double phi[2] = {0.7, -1.3};

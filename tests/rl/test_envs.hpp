@@ -55,7 +55,7 @@ class Corridor final : public env::Environment {
   env::ActionSpace actionSpace() const override {
     env::ActionSpace space;
     space.kind = env::ActionSpace::Kind::Discrete;
-    space.choices = 2;
+    space.choices = {2};
     return space;
   }
   void reset(Rng&) override {

@@ -33,18 +33,24 @@ class BatchEnvironment;  // env/batch.hpp
 enum class BatchIsa;     // env/batch.hpp
 
 // A continuous box (one [low, high] per dimension) or a set of discrete choices. A discrete
-// action is passed to step() as its components (one component, the choice index, for a plain
-// discrete space; Tetris uses two: orientation and column).
+// action is passed to step() as its components, each a whole number in [0, choices[c]) (one
+// component, the choice index, for a plain discrete space; Tetris uses two: orientation and
+// column). Which of them are legal may depend on the state (Environment::
+// hasStateDependentActions). This is all a front needs to drive an environment (Gymnasium: a Box,
+// Discrete(choices[0]) or MultiDiscrete(choices), with a mask of the legal actions).
 struct ActionSpace {
   enum class Kind { Continuous, Discrete };
   Kind kind = Kind::Continuous;
   std::vector<double> low;         // Continuous: lower bound per dimension.
   std::vector<double> high;        // Continuous: upper bound per dimension.
-  int choices = 0;                 // Discrete: the number of choices of a one-component action.
+  std::vector<int> choices;        // Discrete: the number of choices of each component.
   std::size_t components = 1;      // Number of components in an action passed to step().
   std::vector<std::string> names;  // One name per component (CSV headers, listings).
 
   bool continuous() const { return kind == Kind::Continuous; }
+  // Discrete: the number of discrete actions, the product of the choices (the size of a mask of
+  // legal actions, row-major over the components); 0 for a continuous space.
+  std::size_t discreteActions() const;
 };
 
 struct StepResult {
@@ -88,6 +94,20 @@ class Environment {
   // in the box for continuous spaces, a uniform choice for discrete ones. Environments whose legal
   // actions depend on the state (Tetris) override it.
   virtual void sampleAction(Rng& rng, std::span<double> action) const;
+
+  // Discrete spaces, for fronts that drive the environment with actions from outside (Python):
+  // Whether which actions are legal depends on the state (Tetris: the current piece's
+  // placements). False (the default): every action of the space is legal in every state.
+  virtual bool hasStateDependentActions() const { return false; }
+  // Writes 1 for each legal action now and 0 for the others (actionSpace().discreteActions()
+  // flags, row-major over the components; Tetris: orientation x column). The default marks all
+  // legal. InputError when `mask` has another size.
+  virtual void legalActionMask(std::span<std::uint8_t> mask) const;
+  // The legal action nearest to `action` (components that are whole numbers >= 0, possibly beyond
+  // the choices), written into `legal` (components values). The default copies `action`; Tetris
+  // takes the orientation modulo the piece's orientation count and clips the column to where that
+  // orientation fits.
+  virtual void nearestLegalAction(std::span<const double> action, std::span<double> legal) const;
 
   // What an environment knows about itself, for the learners and feature sets that ask:
   // One typical range per state variable (empty: none known, so no Fourier basis).

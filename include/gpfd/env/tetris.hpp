@@ -44,7 +44,8 @@ struct TetrisAfterstates {
 };
 
 // State: the 2c + 2 variables of `state` (TetrisFeatures). Action: (orientation, column), an
-// orientation index of orientationsOf(piece()) and the piece's leftmost column. Reward: rows
+// orientation index of orientationsOf(piece()) and the piece's leftmost column (choices 4 x c,
+// of which the piece's placements are legal). Reward: rows
 // removed. The next piece is drawn from an engine seeded by reset(). After game over, step()
 // changes nothing and reports terminated with reward 0. Learned with lambda-policy iteration over
 // its afterstates (AfterstateGame).
@@ -65,6 +66,13 @@ class Tetris final : public Environment, public AfterstateGame {
   void setState(std::span<const double> state) override;
   StepResult step(std::span<const double> action) override;
   void sampleAction(Rng& rng, std::span<double> action) const override;
+  // The legal actions are the current piece's placements: orientation (of the 4 that a piece has
+  // at most) x column.
+  bool hasStateDependentActions() const override { return true; }
+  void legalActionMask(std::span<std::uint8_t> mask) const override;
+  // The orientation taken modulo the piece's orientation count, the column clipped to where that
+  // orientation fits.
+  void nearestLegalAction(std::span<const double> action, std::span<double> legal) const override;
   // The board (hidden rows included), the piece, the piece generator, game over and the step
   // count.
   std::vector<std::uint64_t> snapshot() const override;

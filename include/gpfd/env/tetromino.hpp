@@ -10,6 +10,7 @@ namespace gpfd::env {
 // Pieces in the order of the paper's "shape" state variable: I=0, O=1, T=2, S=3, Z=4, L=5, J=6.
 inline constexpr int kPieceCount = 7;
 inline constexpr std::array<char, kPieceCount> kPieceLetters{'I', 'O', 'T', 'S', 'Z', 'L', 'J'};
+inline constexpr int kMaxOrientations = 4;  // The most orientations a piece has.
 
 // One orientation: four cells (x to the right, y up) with min x = min y = 0. bottom[x] is the
 // lowest y of the piece in column x (0 <= x < width), rowMask[y] the columns it fills in row y.

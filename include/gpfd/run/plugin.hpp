@@ -22,7 +22,7 @@ namespace gpfd {
 
 // Raised whenever the interfaces a plug-in sees (registries, Environment, Learner, ParamTable)
 // change in a way that breaks a compiled plug-in; a plug-in built for another value is refused.
-inline constexpr int kPluginAbi = 3;  // 3: BatchEnvironment::resetAll.
+inline constexpr int kPluginAbi = 4;  // 4: ActionSpace::choices per component, legal actions.
 
 struct PluginRegistries {
   env::Registry& environments;

@@ -24,10 +24,15 @@ using Params = std::map<std::string, std::string>;
 
 // One declared parameter, as listed to users.
 struct ParamSpec {
+  // What a value is, for fronts that give typed values (Python): a number, a whole number, a flag,
+  // or text (a choice of names, anything custom).
+  enum class Type { Text, Real, Integer, Flag };
+
   std::string name;
   std::string defaultValue;  // As text, in the form that params() and configs use.
   std::string range;         // The values it takes: "[0.0001, 1]", "book | nips", "true | false".
   std::string meaning;
+  Type type = Type::Text;
 };
 
 // "true" | "1" | "on" | "yes" and "false" | "0" | "off" | "no"; InputError(where) otherwise.
@@ -60,7 +65,7 @@ class ParamTable {
         [field, lo, hi, name](Config& c, const std::string& text, const std::string& where) {
           field(c) = parseNumber(text, lo, hi, name, where);
         },
-        [field](const Config& c) { return numberText(field(c)); });
+        [field](const Config& c) { return numberText(field(c)); }, ParamSpec::Type::Real);
   }
   // An integer in [lo, hi].
   template <typename Field>
@@ -72,7 +77,7 @@ class ParamTable {
           using T = std::remove_reference_t<decltype(field(c))>;
           field(c) = static_cast<T>(parseInteger(text, lo, hi, name, where));
         },
-        [field](const Config& c) { return std::to_string(field(c)); });
+        [field](const Config& c) { return std::to_string(field(c)); }, ParamSpec::Type::Integer);
   }
   // true or false.
   template <typename Field>
@@ -82,7 +87,8 @@ class ParamTable {
         [field](Config& c, const std::string& text, const std::string& where) {
           field(c) = parseFlag(text, where);
         },
-        [field](const Config& c) { return std::string(field(c) ? "true" : "false"); });
+        [field](const Config& c) { return std::string(field(c) ? "true" : "false"); },
+        ParamSpec::Type::Flag);
   }
   // One of named values, e.g. {{"book", Dynamics::Book}, {"nips", Dynamics::Nips}}.
   template <typename Field, typename Value>
@@ -110,11 +116,11 @@ class ParamTable {
         });
   }
   // Anything else: `parse` sets the field from text, `print` writes it back; `range` says what it
-  // takes.
+  // takes, `type` what its values are.
   ParamTable& custom(std::string name, std::string range, std::string meaning, Parse parse,
-                     Print print) {
+                     Print print, ParamSpec::Type type = ParamSpec::Type::Text) {
     entries_.push_back({std::move(name), std::move(range), std::move(meaning), std::move(parse),
-                        std::move(print)});
+                        std::move(print), type});
     return *this;
   }
   // A rule over several parameters, checked after all are read: InputError(what,
@@ -159,7 +165,9 @@ class ParamTable {
   std::vector<ParamSpec> specs() const {
     const Config defaults{};
     std::vector<ParamSpec> out;
-    for (const auto& e : entries_) out.push_back({e.name, e.print(defaults), e.range, e.meaning});
+    for (const auto& e : entries_) {
+      out.push_back({e.name, e.print(defaults), e.range, e.meaning, e.type});
+    }
     return out;
   }
   std::vector<std::string> names() const {
@@ -174,6 +182,7 @@ class ParamTable {
     std::string name, range, meaning;
     Parse parse;
     Print print;
+    ParamSpec::Type type;
   };
   struct Rule {
     std::string name;
