@@ -3,16 +3,19 @@
 in one run: wall time and CPU time (this process and its workers) of a whole `gpfd.evolve`.
 
 Usage, with the package installed (scripts/test installs it in .venv):
-  .venv/bin/python bench/python_threads.py [--mountain-car]
+  .venv/bin/python bench/python_threads.py [--mountain-car] [--config NAME]
 
 The environments: a tiny one of the user's own (a point pushed along a line: 2 variables, one
 continuous action, 50 steps) and, with --mountain-car, Gymnasium's MountainCarContinuous-v0.
-Each run: population 10, generations 2, seed 1, the default config (cartpole-quick's budgets),
-results in a fresh temporary directory. The results of 1 and 2 workers must be identical, and
-the script checks it.
+Each run: population 10, generations 2, seed 1, the config given (default cartpole-quick, the
+budgets of the first measurements; a user environment's own default is user-env), results in a
+fresh temporary directory. The results of 1 and 2 workers must be identical, and the script
+checks it. The load average before each run is printed beside it (other work on the machine
+slows a run).
 """
 
 import argparse
+import os
 import resource
 import tempfile
 import time
@@ -54,11 +57,17 @@ def cpu_seconds() -> float:
     return own.ru_utime + own.ru_stime + children.ru_utime + children.ru_stime
 
 
-def measure(env, threads: int) -> tuple[float, float, str]:
+def measure(env, threads: int, config: str = "cartpole-quick") -> tuple[float, float, str]:
     with tempfile.TemporaryDirectory() as tmp:
         wall, cpu = time.perf_counter(), cpu_seconds()
         run = gpfd.evolve(
-            env=env, seed=1, population=10, generations=2, threads=threads, out=Path(tmp) / "run"
+            config,
+            env=env,
+            seed=1,
+            population=10,
+            generations=2,
+            threads=threads,
+            out=Path(tmp) / "run",
         )
         wall, cpu = time.perf_counter() - wall, cpu_seconds() - cpu
         return wall, cpu, run.best.to_text()
@@ -67,18 +76,20 @@ def measure(env, threads: int) -> tuple[float, float, str]:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--mountain-car", action="store_true")
+    parser.add_argument("--config", default="cartpole-quick")
     args = parser.parse_args()
     envs = [("tiny environment (Point)", Point)]
     if args.mountain_car:
         envs.append(("MountainCarContinuous-v0", "MountainCarContinuous-v0"))
-    print("| environment | threads | wall s | CPU s (with workers) |")
-    print("|---|---|---|---|")
+    print("| environment | threads | wall s | CPU s (with workers) | load average before |")
+    print("|---|---|---|---|---|")
     for name, env in envs:
         results = {}
         for threads in (1, 2):
-            wall, cpu, best = measure(env, threads)
+            load = os.getloadavg()[0]
+            wall, cpu, best = measure(env, threads, args.config)
             results[threads] = best
-            print(f"| {name} | {threads} | {wall:.1f} | {cpu:.1f} |", flush=True)
+            print(f"| {name} | {threads} | {wall:.1f} | {cpu:.1f} | {load:.2f} |", flush=True)
         assert results[1] == results[2], f"{name}: 1 and 2 workers returned different features"
 
 
