@@ -20,7 +20,6 @@
 #include "bindings.hpp"
 #include "feature_set.hpp"
 #include "genome_blob.hpp"
-#include "trial_runner.hpp"
 #include "gpfd/env/environment.hpp"
 #include "gpfd/run/learning_task.hpp"
 #include "gpfd/service/assess.hpp"
@@ -28,6 +27,7 @@
 #include "gpfd/service/evolve.hpp"
 #include "gpfd/service/evolve_text.hpp"
 #include "gpfd/service/feature_source.hpp"
+#include "trial_runner.hpp"
 
 namespace gpfd::python {
 namespace {
@@ -289,11 +289,10 @@ double fitness(const std::string& config, const std::vector<std::string>& overri
 }
 
 nb::dict assess(const std::string& config, const std::vector<std::string>& overrides,
-                const std::string& env,
-                const std::map<std::string, std::string>& params, int runs, int budget,
-                std::uint64_t seed, int threads, const std::vector<const FeatureSet*>& featureSets,
-                bool raw, bool withOriginal, int fourier, std::optional<std::string> out,
-                bool force, nb::object evaluator) {
+                const std::string& env, const std::map<std::string, std::string>& params, int runs,
+                int budget, std::uint64_t seed, int threads,
+                const std::vector<const FeatureSet*>& featureSets, bool raw, bool withOriginal,
+                int fourier, std::optional<std::string> out, bool force, nb::object evaluator) {
   service::AssessRequest request;
   request.env = env;
   request.config = config;
@@ -366,10 +365,10 @@ void bindDiscovery(nb::module_& m) {
       },
       nb::arg("config"), nb::arg("overrides"), "A config, fully resolved, as TOML.");
   m.def("builtin_configs", &service::builtinConfigNames);
-  m.def("assess", &assess, nb::arg("config"), nb::arg("overrides"), nb::arg("env"), nb::arg("params"), nb::arg("runs"),
-        nb::arg("budget"), nb::arg("seed"), nb::arg("threads"), nb::arg("features"), nb::arg("raw"),
-        nb::arg("with_original"), nb::arg("fourier"), nb::arg("out").none(), nb::arg("force"),
-        nb::arg("evaluator").none() = nb::none(),
+  m.def("assess", &assess, nb::arg("config"), nb::arg("overrides"), nb::arg("env"),
+        nb::arg("params"), nb::arg("runs"), nb::arg("budget"), nb::arg("seed"), nb::arg("threads"),
+        nb::arg("features"), nb::arg("raw"), nb::arg("with_original"), nb::arg("fourier"),
+        nb::arg("out").none(), nb::arg("force"), nb::arg("evaluator").none() = nb::none(),
         "The test protocol of `gpfd assess`; returns the statistics table by column.");
 }
 

@@ -59,7 +59,7 @@ rl::LearningCurve curveFromPython(nb::handle value) {
                         nb::cast<std::int64_t>(p[2]), nb::cast<double>(p[3])});
   }
   const auto w = nb::cast<nb::tuple>(t[1]);
-  c.weights = {nb::cast<std::size_t>(w[0]),          nb::cast<std::size_t>(w[1]),
+  c.weights = {nb::cast<std::size_t>(w[0]),         nb::cast<std::size_t>(w[1]),
                nb::cast<std::vector<double>>(w[2]), nb::cast<std::vector<double>>(w[3]),
                nb::cast<std::vector<double>>(w[4]), nb::cast<bool>(w[5])};
   c.episodes = nb::cast<std::int64_t>(t[2]);
@@ -106,8 +106,8 @@ class PythonTrialRunner final : public run::TrialRunner {
         slots.push_back({s, first, count});
       }
     }
-    const nb::object results = evaluator_.attr("run_trials")(
-        configText, static_cast<int>(task.budget()), tasks);
+    const nb::object results =
+        evaluator_.attr("run_trials")(configText, static_cast<int>(task.budget()), tasks);
     std::size_t j = 0;
     for (nb::handle result : results) {
       if (j == slots.size()) throw std::runtime_error("the trial runner returned too many tasks");
@@ -136,8 +136,7 @@ nb::list trainRuns(const std::string& configText, int budget, const nb::tuple& f
     throw std::invalid_argument(fmt::format("unknown budget {}", budget));
   }
   const run::LearningTask& task = cachedTask(configText, static_cast<Budget>(budget));
-  const run::TrialFeatures set =
-      featuresFromPython(features, static_cast<int>(task.stateDim()));
+  const run::TrialFeatures set = featuresFromPython(features, static_cast<int>(task.stateDim()));
   std::vector<rl::LearningCurve> curves;
   {
     nb::gil_scoped_release release;

@@ -19,6 +19,7 @@ namespace gpfd::python {
 std::shared_ptr<run::TrialRunner> pythonTrialRunner(nb::object evaluator);
 
 // One LearningTask per config text and budget, in this process (the workers' tasks).
-const run::LearningTask& cachedTask(const std::string& configText, run::LearningTask::Budget budget);
+const run::LearningTask& cachedTask(const std::string& configText,
+                                    run::LearningTask::Budget budget);
 
 }  // namespace gpfd::python

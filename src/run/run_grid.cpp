@@ -20,9 +20,8 @@ std::vector<std::vector<rl::LearningCurve>> trainRunGrid(
                                                      std::vector<rl::LearningCurve>(runs));
   if (runs == 0 || maps.empty()) return curves;
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-  const std::size_t group =
-      runGroupSize(maps.size(), runs, static_cast<std::size_t>(arena.max_concurrency()),
-                   task.config().trials);
+  const std::size_t group = runGroupSize(
+      maps.size(), runs, static_cast<std::size_t>(arena.max_concurrency()), task.config().trials);
   const std::size_t groupsPerMap = (runs + group - 1) / group;
   arena.execute([&] {
     tbb::parallel_for(std::size_t{0}, maps.size() * groupsPerMap, [&](std::size_t job) {

@@ -44,8 +44,8 @@ std::vector<std::vector<rl::LearningCurve>> ThreadTrialRunner::run(
     pointers.push_back(maps.back().get());
   }
   return trainRunGrid(
-      task, pointers, batch.runs(),
-      [&](std::size_t s, std::size_t r) { return batch.seeds[s][r]; }, threads_, done);
+      task, pointers, batch.runs(), [&](std::size_t s, std::size_t r) { return batch.seeds[s][r]; },
+      threads_, done);
 }
 
 }  // namespace gpfd::run

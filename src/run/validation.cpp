@@ -82,8 +82,8 @@ bool Confirmation::held() const {
 }
 
 Validator::Validator(const ExperimentConfig& config, TrialRunner& runner, std::uint64_t stream)
-    : Validator(config, runner, LearningTask::Budget::Validation, config.validation.seeds,
-                stream) {}
+    : Validator(config, runner, LearningTask::Budget::Validation, config.validation.seeds, stream) {
+}
 
 Validator::Validator(const ExperimentConfig& config, TrialRunner& runner,
                      LearningTask::Budget budget, int seeds, std::uint64_t stream)

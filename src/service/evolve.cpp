@@ -139,9 +139,10 @@ EvolveResult evolve(const EvolveRequest& request, EvolveProgress& progress,
                 "gp.population x genome.max_features x genome.max_size");
   const std::string& name = request.outName.empty() ? config.name : request.outName;
   if (!run::isRunName(name)) {
-    throw InputError("a results directory's name must be letters, digits, '.', '_' and '-', "
-                     "not starting with '.'",
-                     name);
+    throw InputError(
+        "a results directory's name must be letters, digits, '.', '_' and '-', "
+        "not starting with '.'",
+        name);
   }
   // A directory holding a run or a set is resumed, never started over, even with force.
   DirectoryLock lock = claimResultsDirectory(request.out, name, run::refuseExistingRuns);

@@ -38,9 +38,9 @@ class RecordingRunner final : public run::TrialRunner {
   std::mutex mutex_;
 };
 
-service::EvolveRequest request(const std::string& name, const std::string& out, int threads) {
+service::EvolveRequest request(const std::string& out, int threads) {
   service::EvolveRequest r;
-  r.config = tinyEvolveConfig(name, 4);
+  r.config = tinyEvolveConfig("runner", 4);
   r.overrides = {"gp.generations=2", "validation.confirm_params.updates=5"};
   r.out = {out, false, "--out"};
   r.threads = threads;
@@ -58,10 +58,10 @@ TEST(TrialRunner, ValidationAndConfirmationRunOnTheRunnerGivenWithTheSameResults
   service::EvolveProgress quiet;
   const std::atomic<bool> stop{false};
   const auto plain = freshDir("runner-threads");
-  ASSERT_TRUE(service::evolve(request("runner-threads", plain, 2), quiet, stop).finished);
+  ASSERT_TRUE(service::evolve(request(plain, 2), quiet, stop).finished);
 
   const auto given = freshDir("runner-given");
-  auto withRunner = request("runner-given", given, 2);
+  auto withRunner = request(given, 2);
   const auto runner = std::make_shared<RecordingRunner>();
   withRunner.trialRunner = runner;
   ASSERT_TRUE(service::evolve(withRunner, quiet, stop).finished);
@@ -110,7 +110,7 @@ TEST(TrialRunner, AResultsDirectoryNameIsAPlainName) {
   service::EvolveProgress quiet;
   const std::atomic<bool> stop{false};
   for (const std::string bad : {"..", "../escape", "a/b", ".hidden"}) {
-    auto r = request("runner-named", "", 1);
+    auto r = request("", 1);
     r.out = {std::nullopt, false, "--out"};
     r.outName = bad;
     EXPECT_THROW(service::evolve(r, quiet, stop), InputError) << bad;
