@@ -277,7 +277,8 @@ def assess(
     if isinstance(features, (FeatureSet, str, os.PathLike)):
         features = [features]
     overrides, evaluator = _env_overrides(env, env_kwargs)
-    env_name = "" if env is None else env if evaluator is None else evaluator.name
+    # gpfd's own environment by name; one stepped in Python by the name it is registered under.
+    env_name = evaluator.name if evaluator is not None else env if isinstance(env, str) else ""
     if evaluator is not None:
         evaluator.workers = threads if threads > 0 else (os.cpu_count() or 1)
         if config is None:

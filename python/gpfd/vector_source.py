@@ -26,6 +26,7 @@ Without a vector form, trials step one environment at a time in worker processes
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import math
 from collections.abc import Callable, Sequence
@@ -77,10 +78,8 @@ class GymnasiumSource(VectorSource):
         # for "module:Id", which gymnasium.make imports first.
         self.spec: gym.envs.registration.EnvSpec | None = None
         if ":" not in env_id:
-            try:
+            with contextlib.suppress(gym.error.Error):
                 self.spec = gym.spec(env_id)
-            except gym.error.Error:
-                pass
 
     def _id(self) -> str | gym.envs.registration.EnvSpec:
         return self.spec if self.spec is not None else self.env_id

@@ -105,7 +105,7 @@ def test_validation_and_confirmation_run_on_the_workers_with_the_same_results(tm
     assert in_workers >= 2 * 4 * 3 * 2
     assert in_parent <= 2 * 16
 
-    one = gpfd.evolve(**common, threads=1, out=tmp_path / "one")
+    gpfd.evolve(**common, threads=1, out=tmp_path / "one")
     assert run_files(tmp_path / "one") == run_files(tmp_path / "two")
 
 
