@@ -73,7 +73,7 @@ def _env_overrides(
     env: Any, env_kwargs: dict | None
 ) -> tuple[list[str], user_env.Evaluator | None]:
     """The overrides that select `env`, and for an environment stepped in Python its evaluator
-    (not yet started)."""
+    (not yet started; one worker until told)."""
     if env is None:
         if env_kwargs:
             raise TypeError("env_kwargs needs env=")
@@ -108,14 +108,16 @@ def evolve(
 ) -> Run:
     """Discovers features with GP, exactly as ``gpfd evolve`` does, and returns the run.
 
-    config: a TOML file or a shipped config name (default ``cartpole-quick``).
+    config: a TOML file or a shipped config name (default ``cartpole-quick``; ``user-env`` for an
+        environment stepped in Python).
     env: one of gpfd's environments (``"acrobot"``, like ``--env``), or a Gymnasium id or a
         callable returning a Gymnasium environment, stepped in Python in ``threads`` worker
         processes (see gpfd.user_env); ``env_kwargs`` go to ``gymnasium.make`` or the callable.
     seed, population, generations: override the config's, like the command's flags.
     threads: worker threads (processes for a Python environment); 0: all cores. Never changes
         the results.
-    out: the results directory (default ``results/<name>``, or ``results/<name>-N`` when taken);
+    out: the results directory (default ``results/<name>``, or ``results/<name>-N`` when taken:
+        the config's name, or for an environment stepped in Python the environment's);
         one that already holds files needs ``force=True``, one that holds a run is resumed with
         ``resume=``, never started over. The directory is locked while the run writes into it.
     set: any config key, ``{"gp.elitism": 0.2}`` or ``["gp.elitism=0.2"]`` (``--set``).
@@ -132,6 +134,11 @@ def evolve(
     Ctrl-C stops the run at the end of the running generation, after its checkpoint.
     """
     overrides, evaluator = _env_overrides(env, env_kwargs)
+    out_name = ""
+    if evaluator is not None:
+        out_name = user_env.run_name(evaluator.name)
+        if config is None:
+            config = user_env.DEFAULT_CONFIG
     if resume is not None:
         if seed is not None or population is not None or set is not None:
             raise TypeError("resume continues with the stored config; only generations may change")
@@ -171,6 +178,7 @@ def evolve(
             evaluator,
             bool(verbose),
             bar,
+            out_name,
         )
     finally:
         if evaluator is not None:
@@ -191,9 +199,11 @@ def fitness(
 ) -> float:
     """GP's fitness of a feature set: the mean score of the config's short learning trials, as
     one evaluation in ``gpfd evolve`` computes it (run::trialFitness with ``Rng(seed)``). An
-    environment stepped in Python runs in this process."""
-    overrides, _ = _env_overrides(env, env_kwargs)
+    environment stepped in Python runs in this process (default config ``user-env``)."""
+    overrides, evaluator = _env_overrides(env, env_kwargs)
     overrides += _overrides(set)
+    if evaluator is not None and config is None:
+        config = user_env.DEFAULT_CONFIG
     if not isinstance(features, FeatureSet):
         features = FeatureSet.load(os.fspath(features))
     return _core.fitness(
@@ -237,7 +247,7 @@ _SUMMARY_COLUMNS = [
 def assess(
     features: FeatureSet | str | os.PathLike | Iterable[FeatureSet | str | os.PathLike] = (),
     *,
-    env: str | None = None,
+    env: str | Callable[..., Any] | None = None,
     config: str | os.PathLike | None = None,
     raw: bool = False,
     with_original: bool = False,
@@ -250,6 +260,7 @@ def assess(
     out: str | os.PathLike | None = None,
     force: bool = False,
     as_frame: bool | None = None,
+    env_kwargs: dict[str, Any] | None = None,
 ) -> Any:
     """The paper's test protocol, as ``gpfd assess`` runs it: each feature set (and the original
     state variables, the baseline, first) trained with the long budget over ``runs`` runs, with
@@ -258,30 +269,48 @@ def assess(
     dict of NumPy arrays. ``out`` also writes curves, finals, summary and plots there (locked while
     written; a directory that already holds files needs ``force=True``).
 
+    env: one of gpfd's environments, or a Gymnasium id or a callable returning a Gymnasium
+        environment (``env_kwargs`` go to it), whose runs step it in Python in ``threads`` worker
+        processes, as gpfd.evolve does; its default config is ``user-env``.
     params: ``k=v`` for the environment or the learner, like ``--param``.
     """
     if isinstance(features, (FeatureSet, str, os.PathLike)):
         features = [features]
-    env_name = env if env is not None else ""
+    overrides, evaluator = _env_overrides(env, env_kwargs)
+    # gpfd's own environment by name; one stepped in Python by the name it is registered under.
+    env_name = evaluator.name if evaluator is not None else env if isinstance(env, str) else ""
+    if evaluator is not None:
+        evaluator.workers = threads if threads > 0 else (os.cpu_count() or 1)
+        if config is None:
+            config = user_env.DEFAULT_CONFIG
+    else:
+        overrides = []  # gpfd's own environment: the request checks it against the config's.
     sets = [
-        f if isinstance(f, FeatureSet) else FeatureSet.load(os.fspath(f), env=env) for f in features
+        f if isinstance(f, FeatureSet) else FeatureSet.load(os.fspath(f), env=env_name or None)
+        for f in features
     ]
     text_params = {str(k): _param_text(v) for k, v in (params or {}).items()}
-    table = _core.assess(
-        "" if config is None else os.fspath(config),
-        env_name,
-        text_params,
-        int(runs or 0),
-        int(budget or 0),
-        int(seed),
-        int(threads),
-        sets,
-        bool(raw),
-        bool(with_original),
-        int(fourier),
-        None if out is None else os.fspath(out),
-        bool(force),
-    )
+    try:
+        table = _core.assess(
+            "" if config is None else os.fspath(config),
+            overrides,
+            env_name,
+            text_params,
+            int(runs or 0),
+            int(budget or 0),
+            int(seed),
+            int(threads),
+            sets,
+            bool(raw),
+            bool(with_original),
+            int(fourier),
+            None if out is None else os.fspath(out),
+            bool(force),
+            evaluator,
+        )
+    finally:
+        if evaluator is not None:
+            evaluator.close()
     return _table({key: table[key] for key in _SUMMARY_COLUMNS}, as_frame)
 
 

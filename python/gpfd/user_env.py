@@ -4,9 +4,10 @@
 returns a Gymnasium environment. The environment needs a Box observation space (its observation,
 flattened, is the state: variables x0, x1, ...) and a Box (finite bounds) or Discrete action space.
 Every episode starts with ``reset(seed=s)``, s drawn from the trial's own stream, so a run is
-reproducible when the environment is deterministic given its seed. Fitness evaluations run in
-worker processes (one per thread asked for), since Python steps one environment at a time per
-process; each worker makes its own environments.
+reproducible when the environment is deterministic given its seed. Every stage runs in worker
+processes (one per thread asked for), since Python steps one environment at a time per process:
+the GP's fitness evaluations, and the learning runs of validation, confirmation and assessment.
+Each worker makes its own environments.
 """
 
 from __future__ import annotations
@@ -15,7 +16,8 @@ import functools
 import math
 import multiprocessing
 import os
-from collections.abc import Callable
+import re
+from collections.abc import Callable, Iterator
 from typing import TYPE_CHECKING, Any
 
 import cloudpickle
@@ -36,6 +38,10 @@ class EnvError(RuntimeError):
 
 # The environment factory of each registered name, in this process.
 _factories: dict[str, Callable[[], gym.Env]] = {}
+
+#: The shipped config (configs/user-env.toml) of gpfd.evolve and gpfd.assess on an environment
+#: stepped in Python, when no config is given.
+DEFAULT_CONFIG = "user-env"
 
 
 def is_builtin(name: str) -> bool:
@@ -81,6 +87,19 @@ def resolve(
         env = functools.partial(env, **env_kwargs)
     target = env.func if isinstance(env, functools.partial) else env
     return "python:" + getattr(target, "__qualname__", type(target).__name__), env
+
+
+def run_name(name: str) -> str:
+    """The results directory's default name for the registered environment `name` (resolve):
+    a Gymnasium id or EnvPool task as a plain name ("ALE/Pong-v5" -> "ALE-Pong-v5"), a callable's
+    name, or "user-env" where nothing usable is left (a lambda)."""
+    if name.startswith("python:"):  # A callable's qualified name: "f.<locals>.make" -> "make".
+        base = name.removeprefix("python:").rsplit(".", 1)[-1]
+        base = "" if base.startswith("<") else base  # "<lambda>" names nothing.
+    else:  # "module:Id" -> "Id".
+        base = name.rsplit(":", 1)[-1]
+    plain = re.sub(r"[^A-Za-z0-9._-]+", "-", base).strip("-.")
+    return plain or "user-env"
 
 
 def register(name: str, factory: Callable[[], gym.Env]) -> None:
@@ -178,10 +197,16 @@ def _fitness_task(task: tuple[str, bytes, int]) -> float:
     return _core.trial_fitness(*task)
 
 
+def _runs_task(task: tuple[str, int, tuple, list[int]]) -> list:
+    return _core.train_runs(*task)
+
+
 class Evaluator:
     """evaluate(config_text, [(genome, seed), ...]) for gpfd's discovery: run::trialFitness of
-    each genome, in this process (workers == 1) or in a pool of worker processes. The result of
-    a genome depends on its seed only, so any number of workers gives the same run."""
+    each genome; and run_trials for the learning runs of validation, confirmation and assessment.
+    In this process (workers == 1) or in a pool of worker processes. A fitness depends on its
+    genome and seed only, a curve on its features, budget and seed, so any number of workers
+    gives the same run."""
 
     def __init__(self, name: str, factory: Callable[[], gym.Env], workers: int):
         self.name = name
@@ -190,8 +215,23 @@ class Evaluator:
         self._pool: Pool | None = None
 
     def __call__(self, config_text: str, tasks: list[tuple[bytes, int]]) -> list[float]:
+        work = [(config_text, genome, seed) for genome, seed in tasks]
         if self.workers == 1:
-            return [_core.trial_fitness(config_text, genome, seed) for genome, seed in tasks]
+            return [_fitness_task(task) for task in work]
+        return self._started().map(_fitness_task, work, chunksize=1)
+
+    def run_trials(
+        self, config_text: str, budget: int, tasks: list[tuple[tuple, list[int]]]
+    ) -> Iterator[list]:
+        """The curves of each task (a feature set and the seeds of its runs) under the config
+        and budget (run::LearningTask::Budget), in task order, as each is done
+        (python/src/trial_runner.cpp)."""
+        work = [(config_text, budget, features, seeds) for features, seeds in tasks]
+        if self.workers == 1:
+            return map(_runs_task, work)
+        return self._started().imap(_runs_task, work, chunksize=1)
+
+    def _started(self) -> Pool:
         if self._pool is None:
             # forkserver: workers do not inherit this process' threads (oneTBB's) or state.
             method = (
@@ -201,7 +241,7 @@ class Evaluator:
             self._pool = context.Pool(
                 self.workers, _init_worker, (self.name, cloudpickle.dumps(self.factory))
             )
-        return self._pool.map(_fitness_task, [(config_text, g, s) for g, s in tasks], chunksize=1)
+        return self._pool
 
     def close(self) -> None:
         if self._pool is not None:

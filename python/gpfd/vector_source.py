@@ -26,6 +26,7 @@ Without a vector form, trials step one environment at a time in worker processes
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import math
 from collections.abc import Callable, Sequence
@@ -72,9 +73,19 @@ class GymnasiumSource(VectorSource):
     def __init__(self, env_id: str, kwargs: dict[str, Any] | None = None):
         self.env_id = env_id
         self.kwargs = dict(kwargs or {})
+        # The spec travels with the source to the worker processes, so that an id registered
+        # where they never run it (under `if __name__ == "__main__":`) is made there too. None
+        # for "module:Id", which gymnasium.make imports first.
+        self.spec: gym.envs.registration.EnvSpec | None = None
+        if ":" not in env_id:
+            with contextlib.suppress(gym.error.Error):
+                self.spec = gym.spec(env_id)
+
+    def _id(self) -> str | gym.envs.registration.EnvSpec:
+        return self.spec if self.spec is not None else self.env_id
 
     def __call__(self) -> gym.Env:
-        return gym.make(self.env_id, **self.kwargs)
+        return gym.make(self._id(), **self.kwargs)
 
     # Equal for the same id and keywords: idle vector environments serve the next call's source.
     def __eq__(self, other: object) -> bool:
@@ -88,13 +99,14 @@ class GymnasiumSource(VectorSource):
 
     def has_vector(self) -> bool:
         try:
-            return gym.spec(self.env_id).vector_entry_point is not None
+            spec = self.spec if self.spec is not None else gym.spec(self.env_id)
         except gym.error.Error:
             return False
+        return spec.vector_entry_point is not None
 
     def make_vector(self, num_envs: int, seed: int) -> VectorEnv:
         return gym.make_vec(
-            self.env_id, num_envs=num_envs, vectorization_mode="vector_entry_point", **self.kwargs
+            self._id(), num_envs=num_envs, vectorization_mode="vector_entry_point", **self.kwargs
         )
 
     def seeds_lanes(self, envs: VectorEnv) -> bool:

@@ -27,6 +27,7 @@
 #include "gpfd/service/evolve.hpp"
 #include "gpfd/service/evolve_text.hpp"
 #include "gpfd/service/feature_source.hpp"
+#include "trial_runner.hpp"
 
 namespace gpfd::python {
 namespace {
@@ -231,7 +232,8 @@ class PythonProgress final : public service::EvolveProgress {
 nb::tuple evolve(const std::string& config, const std::vector<std::string>& overrides,
                  std::optional<std::string> out, bool force, const std::string& resume, int threads,
                  std::optional<int> generations, std::optional<int> runs, nb::object onGeneration,
-                 nb::object evaluate, bool verbose, nb::object observer) {
+                 nb::object evaluate, bool verbose, nb::object observer,
+                 const std::string& outName) {
   service::EvolveRequest request;
   request.config = config;
   request.overrides = overrides;
@@ -240,13 +242,15 @@ nb::tuple evolve(const std::string& config, const std::vector<std::string>& over
   request.threads = threads;
   request.generations = generations;
   request.runs = runs;
+  request.outName = outName;
   if (!evaluate.is_none()) {
     request.makeEvaluator = [evaluate](const run::EvaluatorSetup& setup) {
       return std::make_unique<PythonBatchEvaluator>(evaluate, setup.configText, setup.onEvaluated);
     };
-    // An environment stepped in Python: the GP's evaluations go to `threads` worker processes;
-    // what runs in this process (validation, confirmation) runs on one thread, since more threads
-    // only queue on the GIL (with two, a run took 4x as long: each step handed the GIL over).
+    // An environment stepped in Python: the GP's evaluations and the validation and confirmation
+    // trials all go to the evaluator's worker processes. Threads of this process would only
+    // queue on the GIL (with two, a run took 4x as long: each step handed the GIL over).
+    request.trialRunner = pythonTrialRunner(evaluate);
     request.threads = 1;
   }
   std::atomic<bool> stop{false};
@@ -264,21 +268,8 @@ nb::tuple evolve(const std::string& config, const std::vector<std::string>& over
   return nb::make_tuple(result.dir, result.finished);
 }
 
-// One LearningTask per config text, for the worker processes' fitness calls.
-const run::LearningTask& cachedTask(const std::string& configText) {
-  static std::mutex mutex;
-  static std::map<std::string, std::unique_ptr<run::LearningTask>> tasks;
-  const std::lock_guard lock(mutex);
-  auto& task = tasks[configText];
-  if (!task) {
-    task = std::make_unique<run::LearningTask>(run::parseExperimentConfig(configText, "config"),
-                                               run::LearningTask::Budget::Trial);
-  }
-  return *task;
-}
-
 double trialFitness(const std::string& configText, const nb::bytes& genome, std::uint64_t seed) {
-  const run::LearningTask& task = cachedTask(configText);
+  const run::LearningTask& task = cachedTask(configText, run::LearningTask::Budget::Trial);
   const expr::Genome g = unpackGenome(std::string_view(genome.c_str(), genome.size()),
                                       static_cast<int>(task.stateDim()));
   nb::gil_scoped_release release;
@@ -297,14 +288,15 @@ double fitness(const std::string& config, const std::vector<std::string>& overri
   return service::trialFitness(config, overrides, source, seed);
 }
 
-nb::dict assess(const std::string& config, const std::string& env,
-                const std::map<std::string, std::string>& params, int runs, int budget,
-                std::uint64_t seed, int threads, const std::vector<const FeatureSet*>& featureSets,
-                bool raw, bool withOriginal, int fourier, std::optional<std::string> out,
-                bool force) {
+nb::dict assess(const std::string& config, const std::vector<std::string>& overrides,
+                const std::string& env, const std::map<std::string, std::string>& params, int runs,
+                int budget, std::uint64_t seed, int threads,
+                const std::vector<const FeatureSet*>& featureSets, bool raw, bool withOriginal,
+                int fourier, std::optional<std::string> out, bool force, nb::object evaluator) {
   service::AssessRequest request;
   request.env = env;
   request.config = config;
+  request.overrides = overrides;
   for (const FeatureSet* set : featureSets) request.features.push_back(sourceOf(*set));
   request.raw = raw;
   request.withOriginal = withOriginal;
@@ -314,6 +306,8 @@ nb::dict assess(const std::string& config, const std::string& env,
   for (const auto& [key, value] : params) request.params.push_back(key + "=" + value);
   request.seed = seed;
   request.threads = threads;
+  // An environment stepped in Python: the runs go to the evaluator's worker processes.
+  if (!evaluator.is_none()) request.trialRunner = pythonTrialRunner(std::move(evaluator));
   request.write = out.has_value();
   request.out = {std::move(out), force, "out"};
   request.where = "gpfd.assess";
@@ -357,7 +351,7 @@ void bindDiscovery(nb::module_& m) {
   m.def("evolve", &evolve, nb::arg("config"), nb::arg("overrides"), nb::arg("out").none(),
         nb::arg("force"), nb::arg("resume"), nb::arg("threads"), nb::arg("generations").none(),
         nb::arg("runs").none(), nb::arg("on_generation").none(), nb::arg("evaluate").none(),
-        nb::arg("verbose"), nb::arg("observer").none() = nb::none(),
+        nb::arg("verbose"), nb::arg("observer").none() = nb::none(), nb::arg("out_name") = "",
         "Runs (or resumes) discovery through the service layer, like `gpfd evolve`; returns "
         "(results dir, finished).");
   m.def("trial_fitness", &trialFitness, nb::arg("config_text"), nb::arg("genome"), nb::arg("seed"),
@@ -371,9 +365,10 @@ void bindDiscovery(nb::module_& m) {
       },
       nb::arg("config"), nb::arg("overrides"), "A config, fully resolved, as TOML.");
   m.def("builtin_configs", &service::builtinConfigNames);
-  m.def("assess", &assess, nb::arg("config"), nb::arg("env"), nb::arg("params"), nb::arg("runs"),
-        nb::arg("budget"), nb::arg("seed"), nb::arg("threads"), nb::arg("features"), nb::arg("raw"),
-        nb::arg("with_original"), nb::arg("fourier"), nb::arg("out").none(), nb::arg("force"),
+  m.def("assess", &assess, nb::arg("config"), nb::arg("overrides"), nb::arg("env"),
+        nb::arg("params"), nb::arg("runs"), nb::arg("budget"), nb::arg("seed"), nb::arg("threads"),
+        nb::arg("features"), nb::arg("raw"), nb::arg("with_original"), nb::arg("fourier"),
+        nb::arg("out").none(), nb::arg("force"), nb::arg("evaluator").none() = nb::none(),
         "The test protocol of `gpfd assess`; returns the statistics table by column.");
 }
 

@@ -108,12 +108,12 @@ class Experiment {
       return summarize(scores);
     }
     // The trial behind the reported score: the confirmation's where the run confirms.
-    const Validator validator(config, o_.threads,
+    ThreadTrialRunner runner(o_.threads);
+    const Validator validator(config, runner,
                               config.validation.confirms() ? LearningTask::Budget::Confirmation
                                                            : LearningTask::Budget::Validation,
                               kRemeasureSeeds, Validator::kRemeasureStream);
-    scores = validator.score(std::vector<std::shared_ptr<const features::FeatureMap>>{
-        genomeFeatureMap(returned, validator.task().stateDim(), config.withOriginal)})[0];
+    scores = validator.score({TrialFeatures::ofGenome(returned, config.withOriginal)})[0];
     std::string csv = "score\n";
     for (const double v : scores) csv += fmt::format("{}\n", v);
     writeFileAtomically(path, csv);
@@ -141,8 +141,9 @@ class Experiment {
       fmt::print("  {}: {} feature sets x {} runs\n", name, sets.size(), task.config().assessRuns);
       std::fflush(stdout);
     }
+    ThreadTrialRunner runner(o_.threads);
     const auto result =
-        runAssessment(task, sets, task.config().assessRuns, task.config().seed, o_.threads);
+        runAssessment(task, sets, task.config().assessRuns, task.config().seed, runner);
     createDirectories(dir);
     writeAssessment(dir, result, summarizeAssessment(result, 0), title,
                     rl::LearnerRegistry::global().info(task.config().learner).rowName);
@@ -256,8 +257,7 @@ io::Report benchmark(Experiment& e, const ExperimentConfig& config, const std::s
   const std::string evolveName = "evolve-" + config.name;
   const std::string figure = fs::path(e.dir()).filename().string();
   const LearningTask task(config, LearningTask::Budget::Assessment);
-  const FeatureSet original{"original",
-                            std::make_shared<const features::RawFeatureMap>(task.stateDim())};
+  const FeatureSet original{"original", TrialFeatures::original()};
   std::vector<FeatureSet> sets{original};
   sets.insert(sets.end(), extraSets.begin(), extraSets.end());
   const std::size_t firstRun = sets.size();
@@ -279,8 +279,7 @@ io::Report benchmark(Experiment& e, const ExperimentConfig& config, const std::s
     run.features = e.discovered(run.dir, task);
     // A run that kept the original variables returned exactly them: nothing to assess.
     if (!e.outcome(run.dir).originalWon) {
-      sets.push_back(
-          {run.set, genomeFeatureMap(run.features.genome, task.stateDim(), config.withOriginal)});
+      sets.push_back({run.set, TrialFeatures::ofGenome(run.features.genome, config.withOriginal)});
     }
     gpRuns.push_back(std::move(run));
   }
@@ -392,7 +391,7 @@ io::Report figure1(Experiment& e) {
   return benchmark(e, config, "Figure 1: cart-pole, policy gradient with Rprop",
                    "The paper's Figure 1: learning with the original state variables, with sin and "
                    "cos of the pole angle added, and with the features GP discovers.",
-                   true, {{"original+sin/cos", genomeFeatureMap(sincos, task.stateDim(), false)}});
+                   true, {{"original+sin/cos", TrialFeatures::ofGenome(sincos, false)}});
 }
 
 io::Report figure3(Experiment& e, const ReproduceOptions& o) {

@@ -7,13 +7,12 @@
 
 #include "gpfd/io/gnuplot.hpp"
 #include "gpfd/rl/fourier_basis.hpp"
-#include "gpfd/run/run_grid.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::run {
 
-FeatureSet fourierFeatureSet(const LearningTask& task, int order) {
+std::shared_ptr<const rl::FourierBasis> fourierBasis(const LearningTask& task, int order) {
   const auto& config = task.config();
   auto ranges = env::Registry::global().make(config.env, config.envParams)->typicalStateRanges();
   if (ranges.empty()) {
@@ -21,10 +20,14 @@ FeatureSet fourierFeatureSet(const LearningTask& task, int order) {
                          ", so the Fourier basis is not available for it",
                      "--fourier");
   }
-  auto basis = rl::FourierBasis::automatic(std::move(ranges), order);
-  const bool full = basis.coupling() == rl::FourierBasis::Coupling::Full;
+  return std::make_shared<const rl::FourierBasis>(
+      rl::FourierBasis::automatic(std::move(ranges), order));
+}
+
+FeatureSet fourierFeatureSet(const LearningTask& task, int order) {
+  const bool full = fourierBasis(task, order)->coupling() == rl::FourierBasis::Coupling::Full;
   return {fmt::format("fourier-{}{}", order, full ? "" : "-independent"),
-          std::make_shared<const rl::FourierBasis>(std::move(basis))};
+          TrialFeatures::fourier(order)};
 }
 
 std::vector<double> AssessmentResult::finals(std::size_t set) const {
@@ -48,18 +51,19 @@ std::vector<double> AssessmentResult::areas(std::size_t set) const {
 }
 
 AssessmentResult runAssessment(const LearningTask& task, const std::vector<FeatureSet>& sets,
-                               int runs, std::uint64_t seed, int threads,
+                               int runs, std::uint64_t seed, TrialRunner& runner,
                                std::atomic<long>* progress) {
   AssessmentResult result;
-  for (const auto& s : sets) result.names.push_back(s.name);
-  std::vector<const features::FeatureMap*> maps;
-  for (const auto& s : sets) maps.push_back(s.map.get());
-  result.curves = trainRunGrid(
-      task, maps, static_cast<std::size_t>(runs),
-      [seed](std::size_t s, std::size_t r) { return deriveSeed(seed, s, r); }, threads,
-      [progress](std::size_t n) {
-        if (progress) progress->fetch_add(static_cast<long>(n));
-      });
+  TrialBatch batch;
+  for (std::size_t s = 0; s < sets.size(); ++s) {
+    result.names.push_back(sets[s].name);
+    batch.sets.push_back(sets[s].features);
+    auto& seeds = batch.seeds.emplace_back();
+    for (int r = 0; r < runs; ++r) seeds.push_back(deriveSeed(seed, s, r));
+  }
+  result.curves = runner.run(task, batch, [progress](std::size_t n) {
+    if (progress) progress->fetch_add(static_cast<long>(n));
+  });
   return result;
 }
 

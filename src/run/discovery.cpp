@@ -42,6 +42,7 @@ struct Discovery::State {
   std::atomic<int> stage{RunStage::Generations}, stageDone{0}, stageTotal{0};  // Discovery::stage
   int threads = 0;  // As recorded in run.json: the resolved count, or the option given to MPI.
   std::unique_ptr<gp::Evaluator> evaluator;
+  std::shared_ptr<TrialRunner> trialRunner;  // Validation's and confirmation's trials.
   gp::CachingEvaluator cache;
   gp::Evolution evolution;
   std::vector<GenerationRecord> history;
@@ -54,6 +55,7 @@ struct Discovery::State {
         configText(formatExperimentConfig(c)),
         task(c, LearningTask::Budget::Trial),
         evaluator(makeEvaluator()),
+        trialRunner(o.trialRunner ? o.trialRunner : std::make_shared<ThreadTrialRunner>(threads)),
         cache(*evaluator, c.trials, c.maxTrials,
               static_cast<int>(std::lround(c.reevaluationShare * c.gp.population))),
         evolution(gpConfig(c), searchSpace(c, static_cast<int>(task.stateDim())), cache,
@@ -138,7 +140,7 @@ struct Discovery::State {
   void validateHallOfFame() {
     const auto start = std::chrono::steady_clock::now();
     enterStage(RunStage::Validation, 0);
-    if (!validator) validator = std::make_unique<Validator>(config, threads);
+    if (!validator) validator = std::make_unique<Validator>(config, *trialRunner);
     std::vector<ValidatedSet> fresh;
     const auto known = [&](const std::string& key) {
       for (const auto& s : validation.sets) {
@@ -189,14 +191,14 @@ struct Discovery::State {
     if (!winner.isOriginal()) genomes.push_back(&winner.genome);
     auto& confirmation = validation.confirmation;
     confirmation.key = winner.key;  // Empty for the original variables.
-    const Validator confirm = Validator::confirmation(config, threads);
+    const Validator confirm = Validator::confirmation(config, *trialRunner);
     enterStage(RunStage::Confirmation, static_cast<int>(genomes.size()) * confirm.seeds());
-    const auto maps = confirm.maps(genomes);
+    const auto sets = confirm.features(genomes);
     // The original variables alone are confirmed for their score only: nothing to decide.
     const int looks = winner.isOriginal() ? 1 : config.validation.confirmLooks;
     for (int look = 1, trained = 0; trained < confirm.seeds(); ++look) {
       const int until = seedsAtLook(confirm.seeds(), look, looks);
-      auto scores = confirm.score(maps, trained, until);
+      auto scores = confirm.score(sets, trained, until);
       trained = until;
       stageDone.store(static_cast<int>(genomes.size()) * trained);
       confirmation.original.insert(confirmation.original.end(), scores[0].begin(), scores[0].end());

@@ -250,15 +250,6 @@ auto makeAt(const Make& make, const std::string& owner,
   }
 }
 
-// A results directory's name: letters, digits, '.', '_' and '-', not starting with '.' (so never
-// "", "..", a path or a hidden directory).
-bool isRunName(const std::string& name) {
-  return !name.empty() && name[0] != '.' && std::all_of(name.begin(), name.end(), [](char ch) {
-    return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') ||
-           ch == '.' || ch == '_' || ch == '-';
-  });
-}
-
 // gp::validate, its errors ("gp.KEY", "gp.operators.NAME") moved to the key's place, after the
 // operators' names are checked with a did-you-mean.
 void validateGp(const gp::GpConfig& gp, const Place& place) {
@@ -394,6 +385,13 @@ std::string formatExperimentConfig(const ExperimentConfig& config) {
   Writer writer;
   visit(writer, copy);
   return writer.w.text();
+}
+
+bool isRunName(const std::string& name) {
+  return !name.empty() && name[0] != '.' && std::all_of(name.begin(), name.end(), [](char ch) {
+    return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') ||
+           ch == '.' || ch == '_' || ch == '-';
+  });
 }
 
 void validate(const ExperimentConfig& c) { validateAt(c, plainPlace); }

@@ -15,7 +15,10 @@ constexpr std::uint64_t kStateSampleStream = 0x5a3;
 }  // namespace
 
 LearningTask::LearningTask(const ExperimentConfig& config, Budget budget)
-    : config_(config), measure_(config.measure), learnerParams_(config.learnerParams) {
+    : config_(config),
+      budget_(budget),
+      measure_(config.measure),
+      learnerParams_(config.learnerParams) {
   const std::map<std::string, std::string>* overrides = nullptr;
   if (budget == Budget::Assessment) overrides = &config.assessParams;
   if (budget == Budget::Validation) overrides = &config.validation.params;

@@ -7,6 +7,11 @@
 
 namespace gpfd::run {
 
+std::size_t runGroupSize(std::size_t sets, std::size_t runs, std::size_t workers, int trials) {
+  return std::clamp<std::size_t>(sets * runs / (2 * std::max<std::size_t>(workers, 1)), 1,
+                                 static_cast<std::size_t>(std::max(1, trials)));
+}
+
 std::vector<std::vector<rl::LearningCurve>> trainRunGrid(
     const LearningTask& task, const std::vector<const features::FeatureMap*>& maps,
     std::size_t runs, const std::function<std::uint64_t(std::size_t s, std::size_t r)>& seed,
@@ -15,11 +20,8 @@ std::vector<std::vector<rl::LearningCurve>> trainRunGrid(
                                                      std::vector<rl::LearningCurve>(runs));
   if (runs == 0 || maps.empty()) return curves;
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-  // At least two groups per thread where there are enough runs, so no thread waits long.
-  const auto workers = static_cast<std::size_t>(arena.max_concurrency());
-  const std::size_t group =
-      std::clamp<std::size_t>(maps.size() * runs / (2 * workers), 1,
-                              static_cast<std::size_t>(std::max(1, task.config().trials)));
+  const std::size_t group = runGroupSize(
+      maps.size(), runs, static_cast<std::size_t>(arena.max_concurrency()), task.config().trials);
   const std::size_t groupsPerMap = (runs + group - 1) / group;
   arena.execute([&] {
     tbb::parallel_for(std::size_t{0}, maps.size() * groupsPerMap, [&](std::size_t job) {

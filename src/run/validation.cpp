@@ -8,7 +8,6 @@
 
 #include "gpfd/expr/print.hpp"
 #include "gpfd/run/redundancy.hpp"
-#include "gpfd/run/run_grid.hpp"
 
 namespace gpfd::run {
 namespace {
@@ -82,55 +81,55 @@ bool Confirmation::held() const {
   return !key.empty() && comparePaired(winner, original).meanDifference > 0.0;
 }
 
-Validator::Validator(const ExperimentConfig& config, int threads, std::uint64_t stream)
-    : Validator(config, threads, LearningTask::Budget::Validation, config.validation.seeds,
-                stream) {}
+Validator::Validator(const ExperimentConfig& config, TrialRunner& runner, std::uint64_t stream)
+    : Validator(config, runner, LearningTask::Budget::Validation, config.validation.seeds, stream) {
+}
 
-Validator::Validator(const ExperimentConfig& config, int threads, LearningTask::Budget budget,
-                     int seeds, std::uint64_t stream)
-    : task_(config, budget), threads_(threads), seeds_(seeds), stream_(stream) {}
+Validator::Validator(const ExperimentConfig& config, TrialRunner& runner,
+                     LearningTask::Budget budget, int seeds, std::uint64_t stream)
+    : task_(config, budget), runner_(&runner), seeds_(seeds), stream_(stream) {}
 
-Validator Validator::confirmation(const ExperimentConfig& config, int threads) {
-  return {config, threads, LearningTask::Budget::Confirmation, config.validation.confirmSeeds,
+Validator Validator::confirmation(const ExperimentConfig& config, TrialRunner& runner) {
+  return {config, runner, LearningTask::Budget::Confirmation, config.validation.confirmSeeds,
           kConfirmationStream};
 }
 
-std::vector<std::vector<double>> Validator::score(
-    const std::vector<std::shared_ptr<const features::FeatureMap>>& maps) const {
-  return score(maps, 0, seeds_);
+std::vector<std::vector<double>> Validator::score(const std::vector<TrialFeatures>& sets) const {
+  return score(sets, 0, seeds_);
 }
 
-std::vector<std::vector<double>> Validator::score(
-    const std::vector<std::shared_ptr<const features::FeatureMap>>& maps, int from, int to) const {
-  const auto& config = task_.config();
-  std::vector<const features::FeatureMap*> sets;
-  for (const auto& map : maps) sets.push_back(map.get());
-  const auto first = static_cast<std::size_t>(from);
-  const auto curves = trainRunGrid(
-      task_, sets, static_cast<std::size_t>(to - from),
-      [&](std::size_t, std::size_t m) { return deriveSeed(config.seed, stream_, first + m); },
-      threads_);
-  std::vector<std::vector<double>> scores(maps.size());
-  for (std::size_t s = 0; s < maps.size(); ++s) {
+std::vector<std::vector<double>> Validator::score(const std::vector<TrialFeatures>& sets, int from,
+                                                  int to) const {
+  TrialBatch batch{sets, {}};
+  for (std::size_t s = 0; s < sets.size(); ++s) {
+    auto& seeds = batch.seeds.emplace_back();
+    for (int m = from; m < to; ++m) {
+      seeds.push_back(deriveSeed(task_.config().seed, stream_, static_cast<std::uint64_t>(m)));
+    }
+  }
+  const auto curves = runner_->run(task_, batch, {});
+  std::vector<std::vector<double>> scores(sets.size());
+  for (std::size_t s = 0; s < sets.size(); ++s) {
     for (const auto& curve : curves[s]) scores[s].push_back(task_.score(curve));
   }
   return scores;
 }
 
-std::vector<std::shared_ptr<const features::FeatureMap>> Validator::maps(
-    const std::vector<const expr::Genome*>& sets) const {
-  std::vector<std::shared_ptr<const features::FeatureMap>> maps;
-  for (const auto* genome : sets) {
-    maps.push_back(genome != nullptr
-                       ? task_.featureMap(*genome)
-                       : std::make_shared<const features::RawFeatureMap>(task_.stateDim()));
+std::vector<TrialFeatures> Validator::features(
+    const std::vector<const expr::Genome*>& genomes) const {
+  std::vector<TrialFeatures> sets;
+  for (const auto* genome : genomes) {
+    // As task_.featureMap(*genome) compiles it.
+    sets.push_back(genome != nullptr ? TrialFeatures::ofGenome(task_.prepared(*genome),
+                                                               task_.config().withOriginal)
+                                     : TrialFeatures::original());
   }
-  return maps;
+  return sets;
 }
 
 std::vector<std::vector<double>> Validator::score(
     const std::vector<const expr::Genome*>& sets) const {
-  return score(maps(sets));
+  return score(features(sets));
 }
 
 std::size_t originalIndex(const std::vector<ValidatedSet>& sets) {

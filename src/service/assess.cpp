@@ -22,12 +22,13 @@ namespace {
 run::ExperimentConfig assessConfig(const AssessRequest& r) {
   run::ExperimentConfig config;
   if (!r.config.empty()) {
-    config = loadConfig(r.config, {});
+    config = loadConfig(r.config, r.overrides);
     if (!r.env.empty() && r.env != config.env) {
       throw InputError("the environment differs from the config's (" + config.env + ")", r.env);
     }
   } else {
     if (r.env.empty()) throw InputError("give an environment or a config", r.where);
+    if (!r.overrides.empty()) throw InputError("config overrides need a config", r.where);
     config.env = r.env;
     config.learner = env::Registry::global().info(r.env).defaultLearner;
   }
@@ -62,12 +63,9 @@ long long runBudget(const run::ExperimentConfig& config) {
 
 // The sets to assess, the original variables first (the baseline).
 std::vector<run::FeatureSet> featureSets(const AssessRequest& r, const run::LearningTask& task) {
-  const std::size_t dim = task.stateDim();
   const bool asEvolved = task.config().withOriginal;
   std::vector<run::FeatureSet> sets;
-  if (r.raw || !r.features.empty()) {
-    sets.push_back({"original", std::make_shared<const features::RawFeatureMap>(dim)});
-  }
+  if (r.raw || !r.features.empty()) sets.push_back({"original", run::TrialFeatures::original()});
   for (const auto& source : r.features) {
     const auto file = featuresFor(source, task);
     std::string name =
@@ -76,18 +74,21 @@ std::vector<run::FeatureSet> featureSets(const AssessRequest& r, const run::Lear
       // append, not +: GCC 12 gives a false -Wrestrict on "-" + std::string (GCC bug 105329).
       if (s.name == name) name.append("-").append(std::to_string(sets.size()));
     }
-    // A genome past the compiler's limits is the user's input, named as such.
-    const auto mapOf = [&](bool withOriginal) {
+    // Compiled once here, so that a genome past the compiler's limits is the user's input, named
+    // as such, before anything is written.
+    const auto setOf = [&](bool withOriginal) {
+      auto features = run::TrialFeatures::ofGenome(file.genome, withOriginal);
       try {
-        return run::genomeFeatureMap(file.genome, dim, withOriginal);
+        features.map(task);
       } catch (const std::invalid_argument& e) {
         throw InputError(e.what(), source.path.empty() ? source.name : source.path);
       }
+      return features;
     };
     // Assessed as GP evaluated them: with the original variables appended when the config's
     // fitness.with_original says so; withOriginal adds that variant as a further set.
-    sets.push_back({name + (asEvolved ? "+original" : ""), mapOf(asEvolved)});
-    if (r.withOriginal && !asEvolved) sets.push_back({name + "+original", mapOf(true)});
+    sets.push_back({name + (asEvolved ? "+original" : ""), setOf(asEvolved)});
+    if (r.withOriginal && !asEvolved) sets.push_back({name + "+original", setOf(true)});
   }
   if (r.fourier > 0) sets.push_back(run::fourierFeatureSet(task, r.fourier));
   if (sets.empty())
@@ -129,8 +130,9 @@ AssessResult assess(const AssessRequest& r, const TextSink& print) {
     print(fmt::format("gpfd assess: {} feature sets x {} runs on {} ({}), seed {}\n", sets.size(),
                       config.assessRuns, config.env, config.learner, config.seed));
   }
-  const auto runs =
-      run::runAssessment(task, sets, config.assessRuns, config.seed, usableThreads(r.threads));
+  run::ThreadTrialRunner threads(usableThreads(r.threads));
+  run::TrialRunner& runner = r.trialRunner ? *r.trialRunner : threads;
+  const auto runs = run::runAssessment(task, sets, config.assessRuns, config.seed, runner);
   result.summary = run::summarizeAssessment(runs, 0);
   result.runs = static_cast<long>(sets.size()) * config.assessRuns;
   if (lock) {

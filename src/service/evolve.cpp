@@ -123,6 +123,7 @@ EvolveResult evolve(const EvolveRequest& request, EvolveProgress& progress,
   options.version = kVersion;
   options.revision = kRevision;
   options.makeEvaluator = request.makeEvaluator;
+  options.trialRunner = request.trialRunner;
   options.processes = request.processes;
   if (!request.resume.empty()) return resume(request, options, progress, stop);
 
@@ -136,8 +137,15 @@ EvolveResult evolve(const EvolveRequest& request, EvolveProgress& progress,
                     static_cast<double>(sizeof(expr::Node)),
                 "the population at its genome size limits",
                 "gp.population x genome.max_features x genome.max_size");
+  const std::string& name = request.outName.empty() ? config.name : request.outName;
+  if (!run::isRunName(name)) {
+    throw InputError(
+        "a results directory's name must be letters, digits, '.', '_' and '-', "
+        "not starting with '.'",
+        name);
+  }
   // A directory holding a run or a set is resumed, never started over, even with force.
-  DirectoryLock lock = claimResultsDirectory(request.out, config.name, run::refuseExistingRuns);
+  DirectoryLock lock = claimResultsDirectory(request.out, name, run::refuseExistingRuns);
   options.outDir = lock.directory();
   const int runs = request.runs.value_or(1);
   if (runs == 1) {

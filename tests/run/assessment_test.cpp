@@ -21,11 +21,11 @@ TEST(Assessment, SameResultWithOneAndTwoThreadsAndAreasAreCurveMeans) {
   expr::Genome sincos;
   sincos.addFeature(expr::parseInfix("sin(th)", task.stateNames()));
   sincos.addFeature(expr::parseInfix("dth * 2", task.stateNames()));
-  const std::vector<FeatureSet> sets{
-      {"original", std::make_shared<const features::RawFeatureMap>(task.stateDim())},
-      {"mine", genomeFeatureMap(sincos, task.stateDim(), true)}};
-  const auto one = runAssessment(task, sets, 3, 7, 1);
-  const auto two = runAssessment(task, sets, 3, 7, 2);
+  const std::vector<FeatureSet> sets{{"original", TrialFeatures::original()},
+                                     {"mine", TrialFeatures::ofGenome(sincos, true)}};
+  ThreadTrialRunner oneThread(1), twoThreads(2);
+  const auto one = runAssessment(task, sets, 3, 7, oneThread);
+  const auto two = runAssessment(task, sets, 3, 7, twoThreads);
   ASSERT_EQ(one.curves.size(), 2u);
   for (std::size_t s = 0; s < 2; ++s) {
     EXPECT_EQ(one.finals(s), two.finals(s));

@@ -262,10 +262,11 @@ TEST(Evolve, TheValidatedScoreHoldsOnFreshSeeds) {
   const auto validated = file.meta.at("confirmed");  // "MEAN +- SE (M trials)"
   const double mean = std::stod(validated);
   const double se = std::stod(validated.substr(validated.find("+-") + 2));
-  const run::Validator remeasure(config, 2, run::LearningTask::Budget::Confirmation, 30,
+  run::ThreadTrialRunner runner(2);
+  const run::Validator remeasure(config, runner, run::LearningTask::Budget::Confirmation, 30,
                                  run::Validator::kRemeasureStream);
-  const auto scores = remeasure.score(std::vector<std::shared_ptr<const features::FeatureMap>>{
-      run::genomeFeatureMap(file.genome, 4, config.withOriginal)})[0];
+  const auto scores =
+      remeasure.score({run::TrialFeatures::ofGenome(file.genome, config.withOriginal)})[0];
   const auto fresh = run::summarize(scores);
   const double freshSe = fresh.standardError();
   EXPECT_EQ(fresh.n, 30);

@@ -139,12 +139,13 @@ TEST(TrialsTogether, ValidationAndAssessmentEqualTheOneByOnePath) {
   config.envParams["max_steps"] = "300";
   config.validation.seeds = 7;  // Groups of 5 and 2 runs, or smaller on many threads.
   config.assessParams = {{"updates", "4"}};
-  const Validator validator(config, 2);
+  ThreadTrialRunner runner(2);
+  const Validator validator(config, runner);
   const LearningTask& task = validator.task();
   const expr::Genome genome = genomeOf(task, "sin(th1)\ndth1 * cos(th2)\n");
   const std::vector<std::shared_ptr<const features::FeatureMap>> maps{
       task.featureMap(genome), std::make_shared<const features::RawFeatureMap>(task.stateDim())};
-  const auto scores = validator.score(maps);
+  const auto scores = validator.score(std::vector<const expr::Genome*>{&genome, nullptr});
   ASSERT_EQ(scores.size(), 2u);
   for (std::size_t s = 0; s < 2; ++s) {
     ASSERT_EQ(scores[s].size(), 7u);
@@ -156,15 +157,18 @@ TEST(TrialsTogether, ValidationAndAssessmentEqualTheOneByOnePath) {
     }
   }
   const LearningTask assessTask(config, LearningTask::Budget::Assessment);
-  const std::vector<FeatureSet> sets{{"mine", maps[0]}, {"original", maps[1]}};
+  const std::vector<FeatureSet> sets{
+      {"mine", TrialFeatures::ofGenome(task.prepared(genome), config.withOriginal)},
+      {"original", TrialFeatures::original()}};
   std::atomic<long> progress{0};
-  const auto result = runAssessment(assessTask, sets, 6, 9, 1, &progress);
+  ThreadTrialRunner oneThread(1);
+  const auto result = runAssessment(assessTask, sets, 6, 9, oneThread, &progress);
   EXPECT_EQ(progress.load(), 12);
   for (std::size_t s = 0; s < 2; ++s) {
     for (std::size_t r = 0; r < 6; ++r) {
       Rng rng(deriveSeed(9, s, r));
       EXPECT_EQ(result.curves[s][r].points.size(), 5u);
-      expectSameCurves(result.curves[s][r], assessTask.train(*sets[s].map, rng));
+      expectSameCurves(result.curves[s][r], assessTask.train(*maps[s], rng));
     }
   }
 }

@@ -8,20 +8,23 @@
 #include <string>
 #include <vector>
 
-#include "gpfd/features/feature_map.hpp"
+#include "gpfd/rl/fourier_basis.hpp"
 #include "gpfd/rl/learning_curve.hpp"
 #include "gpfd/run/learning_task.hpp"
 #include "gpfd/run/statistics.hpp"
+#include "gpfd/run/trial_runner.hpp"
 
 namespace gpfd::run {
 
 struct FeatureSet {
   std::string name;
-  std::shared_ptr<const features::FeatureMap> map;
+  TrialFeatures features;
 };
 
 // The Fourier basis of `order` over the task's state (typical state ranges; full coupling up to
-// 1024 terms, else independent), named "fourier-ORDER" or "fourier-ORDER-independent".
+// 1024 terms, else independent). InputError when the environment knows no typical ranges.
+std::shared_ptr<const rl::FourierBasis> fourierBasis(const LearningTask& task, int order);
+// That basis as a set, named "fourier-ORDER" or "fourier-ORDER-independent".
 FeatureSet fourierFeatureSet(const LearningTask& task, int order);
 
 struct AssessmentResult {
@@ -35,11 +38,10 @@ struct AssessmentResult {
   std::vector<double> areas(std::size_t set) const;
 };
 
-// Run r of set s is seeded deriveSeed(seed, s, r): independent runs, identical for any number of
-// threads; a few runs of a set are played together (trainRunGrid). `progress` (optional) counts
-// finished runs.
+// Run r of set s is seeded deriveSeed(seed, s, r): independent runs, identical whatever the
+// runner (threads, worker processes). `progress` (optional) counts finished runs.
 AssessmentResult runAssessment(const LearningTask& task, const std::vector<FeatureSet>& sets,
-                               int runs, std::uint64_t seed, int threads,
+                               int runs, std::uint64_t seed, TrialRunner& runner,
                                std::atomic<long>* progress = nullptr);
 
 // One row per set: its final performance and its comparison with set `baseline`.

@@ -24,6 +24,7 @@
 #include "gpfd/gp/evaluator.hpp"
 #include "gpfd/run/checkpoint.hpp"
 #include "gpfd/run/experiment_config.hpp"
+#include "gpfd/run/trial_runner.hpp"
 
 namespace gpfd::run {
 
@@ -44,6 +45,9 @@ struct DiscoveryOptions {
   // Whatever it makes must give ThreadEvaluator's results.
   EvaluatorFactory makeEvaluator;
   int processes = 1;  // MPI processes of the run; recorded in run.json when above 1.
+  // Trains the validation and confirmation trials (e.g. the Python package's worker processes);
+  // empty: a ThreadTrialRunner with `threads`. Whatever it is must give the same curves.
+  std::shared_ptr<TrialRunner> trialRunner;
 };
 
 // InputError when `dir` already holds a run (checkpoint.json) or a set of runs (runs.json):

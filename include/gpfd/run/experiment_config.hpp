@@ -111,6 +111,10 @@ std::string formatExperimentConfig(const ExperimentConfig& config);
 // otherwise.
 void validate(const ExperimentConfig& config);
 
+// Whether `name` may name a results directory: letters, digits, '.', '_' and '-', not starting
+// with '.' (so never "", "..", a path or a hidden directory).
+bool isRunName(const std::string& name);
+
 gp::SearchSpace searchSpace(const ExperimentConfig& config, int variableCount);
 gp::GpConfig gpConfig(const ExperimentConfig& config);
 

@@ -28,6 +28,7 @@ class LearningTask {
   LearningTask(const ExperimentConfig& config, Budget budget);
 
   const ExperimentConfig& config() const { return config_; }
+  Budget budget() const { return budget_; }
   const std::vector<std::string>& stateNames() const { return stateNames_; }
   std::size_t stateDim() const { return stateNames_.size(); }
 
@@ -53,6 +54,7 @@ class LearningTask {
 
  private:
   ExperimentConfig config_;
+  Budget budget_;
   TrialMeasure measure_;
   std::map<std::string, std::string> learnerParams_;
   std::vector<std::string> stateNames_;

@@ -13,6 +13,11 @@
 
 namespace gpfd::run {
 
+// How many runs of one map to train together when `sets` x `runs` runs are spread over
+// `workers`: up to `trials` (a fitness evaluation's count), fewer where that would leave workers
+// idle (at least two groups per worker where there are enough runs). Changes no curve.
+std::size_t runGroupSize(std::size_t sets, std::size_t runs, std::size_t workers, int trials);
+
 // curves[s][r]: run r of maps[s], drawing from Rng(seed(s, r)). Up to task.config().trials runs
 // of one map are trained together (fewer where that would leave threads idle); the curves are
 // the same bits whatever the grouping and the number of threads (0: all cores). done(n), when

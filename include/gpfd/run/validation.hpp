@@ -17,6 +17,7 @@
 #include "gpfd/gp/fitness_cache.hpp"
 #include "gpfd/run/learning_task.hpp"
 #include "gpfd/run/statistics.hpp"
+#include "gpfd/run/trial_runner.hpp"
 
 namespace gpfd::run {
 
@@ -71,8 +72,8 @@ std::vector<HallOfFameEntry> hallOfFame(const std::map<std::string, gp::FitnessR
 
 // Trains feature sets on validation seeds: seed m is deriveSeed(config.seed, stream, m) for
 // every set, so sets are compared on paired trials. A trial is one learning run with the
-// validation budget (config.validation.seeds of them per set), scored as GP scores a trial; a
-// few seeds of a set are trained together (trainRunGrid), which changes no score.
+// validation budget (config.validation.seeds of them per set), scored as GP scores a trial; the
+// runner trains them (on threads, or on worker processes), which changes no score.
 class Validator {
  public:
   static constexpr std::uint64_t kValidationStream = 2;
@@ -80,31 +81,30 @@ class Validator {
   static constexpr std::uint64_t kRemeasureStream = 3;
   static constexpr std::uint64_t kConfirmationStream = 4;
 
-  // Validation trials on config.validation.seeds seeds of `stream`.
-  Validator(const ExperimentConfig& config, int threads, std::uint64_t stream = kValidationStream);
+  // Validation trials on config.validation.seeds seeds of `stream`. `runner` must outlive it.
+  Validator(const ExperimentConfig& config, TrialRunner& runner,
+            std::uint64_t stream = kValidationStream);
   // `seeds` trials of the `budget` (Validation or Confirmation) on seeds of `stream`.
-  Validator(const ExperimentConfig& config, int threads, LearningTask::Budget budget, int seeds,
-            std::uint64_t stream);
+  Validator(const ExperimentConfig& config, TrialRunner& runner, LearningTask::Budget budget,
+            int seeds, std::uint64_t stream);
   // The trials that confirm the choice: config.validation.confirm_seeds seeds of
   // kConfirmationStream with the confirmation trial.
-  static Validator confirmation(const ExperimentConfig& config, int threads);
-  // scores[set][m] of the feature maps.
-  std::vector<std::vector<double>> score(
-      const std::vector<std::shared_ptr<const features::FeatureMap>>& maps) const;
+  static Validator confirmation(const ExperimentConfig& config, TrialRunner& runner);
+  // scores[set][m] of the feature sets.
+  std::vector<std::vector<double>> score(const std::vector<TrialFeatures>& sets) const;
   // scores[set][m - from] on seeds m in [from, to) (a seed's score does not depend on the range).
-  std::vector<std::vector<double>> score(
-      const std::vector<std::shared_ptr<const features::FeatureMap>>& maps, int from, int to) const;
+  std::vector<std::vector<double>> score(const std::vector<TrialFeatures>& sets, int from,
+                                         int to) const;
   // scores[set][m] of genomes as GP sees them (task().featureMap); null: the original variables.
   std::vector<std::vector<double>> score(const std::vector<const expr::Genome*>& sets) const;
-  // The feature maps of `sets` as score(sets) trains them.
-  std::vector<std::shared_ptr<const features::FeatureMap>> maps(
-      const std::vector<const expr::Genome*>& sets) const;
+  // The feature sets of `genomes` as score(genomes) trains them.
+  std::vector<TrialFeatures> features(const std::vector<const expr::Genome*>& genomes) const;
   const LearningTask& task() const { return task_; }
   int seeds() const { return seeds_; }
 
  private:
   LearningTask task_;
-  int threads_;
+  TrialRunner* runner_;
   int seeds_;
   std::uint64_t stream_;
 };

@@ -4,11 +4,13 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "gpfd/run/assessment.hpp"
+#include "gpfd/run/trial_runner.hpp"
 #include "gpfd/service/evolve_text.hpp"
 #include "gpfd/service/feature_source.hpp"
 #include "gpfd/service/results_directory.hpp"
@@ -18,6 +20,8 @@ namespace gpfd::service {
 struct AssessRequest {
   std::string env;     // Optional with a config (then it must match).
   std::string config;  // A file or a shipped name: its learner and budgets.
+  // key=value applied to the config (the environment of Python's gpfd.assess); needs a config.
+  std::vector<std::string> overrides;
   std::vector<FeatureSource> features;
   bool raw = false;                 // The original variables alone (always the baseline).
   bool withOriginal = false;        // Also each set + the original variables.
@@ -27,6 +31,8 @@ struct AssessRequest {
   std::vector<std::string> params;  // k=v for the environment or the learner.
   std::uint64_t seed = 1;
   int threads = 0;
+  // Trains the runs (e.g. the Python package's worker processes); empty: `threads` threads.
+  std::shared_ptr<run::TrialRunner> trialRunner;
   OutputChoice out;                   // Default: results/assess-ENV.
   bool write = true;                  // Write the results (else only return the table).
   std::string where = "gpfd assess";  // How errors name the request.

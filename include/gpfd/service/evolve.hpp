@@ -5,6 +5,7 @@
 #pragma once
 
 #include <atomic>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,6 +26,11 @@ struct EvolveRequest {
   int threads = 0;                     // 0: all cores. Never changes results.
   // How the evaluations are spread (MPI, Python worker processes); empty: threads.
   run::EvaluatorFactory makeEvaluator;
+  // Where validation and confirmation train (Python worker processes); empty: threads.
+  std::shared_ptr<run::TrialRunner> trialRunner;
+  // The default results directory, results/NAME (-2, -3, ... when taken); empty: the config's
+  // name. A plain name (run::isRunName), else InputError.
+  std::string outName;
   int processes = 1;  // MPI processes, recorded in run.json when above 1.
 };
 

@@ -1,0 +1,177 @@
+#include "trial_runner.hpp"
+
+#include <fmt/format.h>
+#include <nanobind/stl/string.h>
+#include <nanobind/stl/vector.h>
+
+#include <map>
+#include <mutex>
+#include <stdexcept>
+
+#include "genome_blob.hpp"
+#include "gpfd/run/run_grid.hpp"
+
+namespace gpfd::python {
+namespace {
+
+using Budget = run::LearningTask::Budget;
+
+// (kind, genome bytes, with_original, fourier order): what a worker rebuilds the set from.
+nb::tuple featuresToPython(const run::TrialFeatures& f) {
+  const std::string blob = packGenome(f.genome);
+  return nb::make_tuple(static_cast<int>(f.kind), nb::bytes(blob.data(), blob.size()),
+                        f.withOriginal, f.fourierOrder);
+}
+
+run::TrialFeatures featuresFromPython(const nb::tuple& t, int variableCount) {
+  run::TrialFeatures f;
+  const int kind = nb::cast<int>(t[0]);
+  if (kind < 0 || kind > static_cast<int>(run::TrialFeatures::Kind::Fourier)) {
+    throw std::invalid_argument(fmt::format("unknown kind of trial features {}", kind));
+  }
+  f.kind = static_cast<run::TrialFeatures::Kind>(kind);
+  const auto genome = nb::cast<nb::bytes>(t[1]);
+  f.genome = unpackGenome(std::string_view(genome.c_str(), genome.size()), variableCount);
+  f.withOriginal = nb::cast<bool>(t[2]);
+  f.fourierOrder = nb::cast<int>(t[3]);
+  return f;
+}
+
+// A curve as plain Python values (floats are doubles: exact through pickle).
+nb::tuple curveToPython(const rl::LearningCurve& c) {
+  nb::list points;
+  for (const auto& p : c.points) {
+    points.append(nb::make_tuple(p.update, p.episodes, p.steps, p.meanReturn));
+  }
+  const auto& w = c.weights;
+  return nb::make_tuple(points,
+                        nb::make_tuple(w.rows, w.cols, nb::cast(w.values), nb::cast(w.shift),
+                                       nb::cast(w.scale), w.bias),
+                        c.episodes, c.steps, c.wallSeconds, c.diverged, c.divergedReason);
+}
+
+rl::LearningCurve curveFromPython(nb::handle value) {
+  const auto t = nb::cast<nb::tuple>(value);
+  rl::LearningCurve c;
+  for (nb::handle point : nb::cast<nb::list>(t[0])) {
+    const auto p = nb::cast<nb::tuple>(point);
+    c.points.push_back({nb::cast<int>(p[0]), nb::cast<std::int64_t>(p[1]),
+                        nb::cast<std::int64_t>(p[2]), nb::cast<double>(p[3])});
+  }
+  const auto w = nb::cast<nb::tuple>(t[1]);
+  c.weights = {nb::cast<std::size_t>(w[0]),         nb::cast<std::size_t>(w[1]),
+               nb::cast<std::vector<double>>(w[2]), nb::cast<std::vector<double>>(w[3]),
+               nb::cast<std::vector<double>>(w[4]), nb::cast<bool>(w[5])};
+  c.episodes = nb::cast<std::int64_t>(t[2]);
+  c.steps = nb::cast<std::int64_t>(t[3]);
+  c.wallSeconds = nb::cast<double>(t[4]);
+  c.diverged = nb::cast<bool>(t[5]);
+  c.divergedReason = nb::cast<std::string>(t[6]);
+  return c;
+}
+
+class PythonTrialRunner final : public run::TrialRunner {
+ public:
+  explicit PythonTrialRunner(nb::object evaluator) : evaluator_(std::move(evaluator)) {}
+  ~PythonTrialRunner() override {
+    nb::gil_scoped_acquire gil;
+    evaluator_.reset();
+  }
+
+  std::vector<std::vector<rl::LearningCurve>> run(
+      const run::LearningTask& task, const run::TrialBatch& batch,
+      const std::function<void(std::size_t)>& done) override {
+    const std::size_t runs = batch.runs();
+    std::vector<std::vector<rl::LearningCurve>> curves(batch.sets.size(),
+                                                       std::vector<rl::LearningCurve>(runs));
+    if (runs == 0) return curves;
+    const std::string configText = run::formatExperimentConfig(task.config());
+    nb::gil_scoped_acquire gil;
+    const auto workers = nb::cast<std::size_t>(evaluator_.attr("workers"));
+    const std::size_t group =
+        run::runGroupSize(batch.sets.size(), runs, workers, task.config().trials);
+    // Task j: runs [first, first + count) of set s, in this order.
+    struct Slot {
+      std::size_t set, first, count;
+    };
+    std::vector<Slot> slots;
+    nb::list tasks;
+    for (std::size_t s = 0; s < batch.sets.size(); ++s) {
+      const nb::tuple features = featuresToPython(batch.sets[s]);
+      for (std::size_t first = 0; first < runs; first += group) {
+        const std::size_t count = std::min(group, runs - first);
+        std::vector<std::uint64_t> seeds(batch.seeds[s].begin() + static_cast<long>(first),
+                                         batch.seeds[s].begin() + static_cast<long>(first + count));
+        tasks.append(nb::make_tuple(features, seeds));
+        slots.push_back({s, first, count});
+      }
+    }
+    const nb::object results =
+        evaluator_.attr("run_trials")(configText, static_cast<int>(task.budget()), tasks);
+    std::size_t j = 0;
+    for (nb::handle result : results) {
+      if (j == slots.size()) throw std::runtime_error("the trial runner returned too many tasks");
+      const Slot& slot = slots[j++];
+      const auto list = nb::cast<nb::list>(result);
+      if (list.size() != slot.count) {
+        throw std::runtime_error(fmt::format("the trial runner returned {} curves for {} runs",
+                                             list.size(), slot.count));
+      }
+      for (std::size_t r = 0; r < slot.count; ++r) {
+        curves[slot.set][slot.first + r] = curveFromPython(list[r]);
+      }
+      if (done) done(slot.count);
+    }
+    if (j != slots.size()) throw std::runtime_error("the trial runner returned too few tasks");
+    return curves;
+  }
+
+ private:
+  nb::object evaluator_;
+};
+
+nb::list trainRuns(const std::string& configText, int budget, const nb::tuple& features,
+                   const std::vector<std::uint64_t>& seeds) {
+  if (budget < 0 || budget > static_cast<int>(Budget::Assessment)) {
+    throw std::invalid_argument(fmt::format("unknown budget {}", budget));
+  }
+  const run::LearningTask& task = cachedTask(configText, static_cast<Budget>(budget));
+  const run::TrialFeatures set = featuresFromPython(features, static_cast<int>(task.stateDim()));
+  std::vector<rl::LearningCurve> curves;
+  {
+    nb::gil_scoped_release release;
+    const auto map = set.map(task);
+    std::vector<Rng> rngs(seeds.begin(), seeds.end());
+    curves = task.trainRuns(*map, rngs);
+  }
+  nb::list out;
+  for (const auto& curve : curves) out.append(curveToPython(curve));
+  return out;
+}
+
+}  // namespace
+
+std::shared_ptr<run::TrialRunner> pythonTrialRunner(nb::object evaluator) {
+  return std::make_shared<PythonTrialRunner>(std::move(evaluator));
+}
+
+const run::LearningTask& cachedTask(const std::string& configText, Budget budget) {
+  static std::mutex mutex;
+  static std::map<std::pair<std::string, Budget>, std::unique_ptr<run::LearningTask>> tasks;
+  const std::lock_guard lock(mutex);
+  auto& task = tasks[{configText, budget}];
+  if (!task) {
+    task = std::make_unique<run::LearningTask>(run::parseExperimentConfig(configText, "config"),
+                                               budget);
+  }
+  return *task;
+}
+
+void bindTrialRunner(nb::module_& m) {
+  m.def("train_runs", &trainRuns, nb::arg("config_text"), nb::arg("budget"), nb::arg("features"),
+        nb::arg("seeds"),
+        "Learning runs of one feature set, run k seeded Rng(seeds[k]) (the worker processes' "
+        "task for validation, confirmation and assessment); their curves as plain values.");
+}
+
+}  // namespace gpfd::python

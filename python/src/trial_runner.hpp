@@ -1,0 +1,25 @@
+// python: batches of learning trials (validation, confirmation, assessment) on the worker
+// processes of an environment stepped in Python (gpfd.user_env.Evaluator), and what the workers
+// run. A curve depends only on its features, budget and seed, so they are the curves that
+// run::ThreadTrialRunner gives.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "bindings.hpp"
+#include "gpfd/run/learning_task.hpp"
+#include "gpfd/run/trial_runner.hpp"
+
+namespace gpfd::python {
+
+// A runner over `evaluator` (gpfd.user_env.Evaluator): its `workers` and its
+// run_trials(config_text, budget, [(features, seeds), ...]), which yields each task's curves in
+// order. Called without the GIL; takes it.
+std::shared_ptr<run::TrialRunner> pythonTrialRunner(nb::object evaluator);
+
+// One LearningTask per config text and budget, in this process (the workers' tasks).
+const run::LearningTask& cachedTask(const std::string& configText,
+                                    run::LearningTask::Budget budget);
+
+}  // namespace gpfd::python
