@@ -18,8 +18,10 @@ from __future__ import annotations
 import argparse
 import statistics
 import time
+from pathlib import Path
 
 import numpy as np
+import torch
 from stable_baselines3 import PPO
 from stable_baselines3.common.vec_env import VecEnv, VecMonitor, VecNormalize
 
@@ -43,24 +45,28 @@ PPO_PARAMS = {
 
 
 def discover(seed: int, population: int, generations: int) -> gpfd.FeatureSet:
-    """A small cartpole-quick run on the discrete 500-step task; its returned (confirmed) set."""
-    run = gpfd.evolve(
-        "cartpole-quick",
-        seed=seed,
-        population=population,
-        generations=generations,
-        set={
-            "env.params.actions": TASK["actions"],
-            "env.params.max_steps": TASK["max_steps"],
-            "learner.params.updates": 15,
-            "fitness.trials": 3,
-        },
-        verbose=False,
-        out=f"results/sb3-example/gp-{seed}",
-        force=True,
-    )
-    assert run.best is not None  # A finished run has its best.features.
-    return run.best
+    """A small cartpole-quick run on the discrete 500-step task; its returned (confirmed) set. A
+    finished run of the same settings in results/sb3-example is read back instead."""
+    out = Path(f"results/sb3-example/gp{seed}-p{population}-g{generations}")
+    if (out / "best.features").is_file():
+        best = gpfd.load_run(out).best
+    else:
+        best = gpfd.evolve(
+            "cartpole-quick",
+            seed=seed,
+            population=population,
+            generations=generations,
+            set={
+                "env.params.actions": TASK["actions"],
+                "env.params.max_steps": TASK["max_steps"],
+                "learner.params.updates": 15,
+                "fitness.trials": 3,
+            },
+            verbose=False,
+            out=out,
+        ).best
+    assert best is not None  # A finished run has its best.features.
+    return best
 
 
 def train_and_evaluate(
@@ -92,7 +98,9 @@ def train_and_evaluate(
         for i in np.flatnonzero(dones):
             returns.append(float(totals[i]))
             totals[i] = 0.0
-    return statistics.fmean(returns[:episodes])
+    score = statistics.fmean(returns[:episodes])
+    print(f"  PPO seed {seed}: {score:.1f}", flush=True)
+    return score
 
 
 def summary(values: list[float]) -> str:
@@ -103,16 +111,18 @@ def summary(values: list[float]) -> str:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--gp-runs", type=int, default=3, help="independent GP runs (seeds 1..)")
-    parser.add_argument("--seeds", type=int, default=3, help="PPO seeds per observation")
+    parser.add_argument("--seeds", type=int, default=5, help="PPO seeds per observation")
     parser.add_argument("--timesteps", type=int, default=50_000, help="PPO steps per training")
     parser.add_argument("--episodes", type=int, default=20, help="evaluation episodes")
     parser.add_argument("--population", type=int, default=30)
     parser.add_argument("--generations", type=int, default=8)
     options = parser.parse_args()
+    torch.set_num_threads(1)  # Small networks: one thread is faster than several contending.
     start = time.monotonic()
     seeds = range(options.seeds)
     rows: list[tuple[str, list[float]]] = []
     for normalise, name in ((False, "raw observation"), (True, "raw observation, VecNormalize")):
+        print(name, flush=True)
         scores = [
             train_and_evaluate(None, s, options.timesteps, options.episodes, normalise)
             for s in seeds
