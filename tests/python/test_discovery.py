@@ -202,7 +202,11 @@ def test_pandas_tables_when_pandas_is_installed(repo):
 def test_ctrl_c_stops_after_a_checkpoint(tmp_path):
     # Generations enough that the run cannot end before the signal comes, however late: 500 of
     # this converged population took 3.6 s, so a loaded machine could finish them first.
+    # The child takes Ctrl-C as an interactive Python does, even where this test runs with SIGINT
+    # ignored (a background job of a non-interactive shell), which the child would inherit.
     script = (
+        "import signal\n"
+        "signal.signal(signal.SIGINT, signal.default_int_handler)\n"
         "import gpfd\n"
         f"gpfd.evolve(seed=2, population=8, generations=1000000, set={QUICK!r}, threads=1, "
         f"out={str(tmp_path / 'run')!r})\n"
