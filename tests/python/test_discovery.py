@@ -219,7 +219,10 @@ def test_ctrl_c_stops_after_a_checkpoint(tmp_path):
     ):
         time.sleep(0.05)
     process.send_signal(signal.SIGINT)
-    _, stderr = process.communicate(timeout=120)
+    try:
+        _, stderr = process.communicate(timeout=120)
+    finally:  # A run that ignored the signal must not outlive the test.
+        process.kill()
     assert process.returncode != 0 and "KeyboardInterrupt" in stderr
     run = gpfd.load_run(tmp_path / "run")
     assert 2 <= run.generations < 1000000 and not run.finished
