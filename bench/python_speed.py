@@ -13,7 +13,9 @@ Usage, with the package installed (scripts/test installs it in .venv):
 3. The cost of one fitness evaluation (GP's short learning trials) on cart-pole built in (stepped
    in C++), on gpfd's cart-pole stepped in Python through Gymnasium (gpfd/CartPole-v0) and on
    Gymnasium's CartPole-v1, each one environment at a time and through its vector form (all
-   lanes in one vector step), and on EnvPool's CartPole-v1 where EnvPool is installed.
+   lanes in one vector step), and on EnvPool's CartPole-v1 where EnvPool is installed; and per
+   evaluation where 16 evaluations play together in one lockstep group (gpfd.fitness_of_each,
+   as gpfd.evolve plays a generation: all their lanes in one vector step).
 Every figure is the median of 3 repetitions, timed in CPU seconds of this process (everything
 here runs on one thread), so that other jobs on the machine disturb it less than wall time.
 """
@@ -32,6 +34,7 @@ import gpfd
 
 REPO = Path(__file__).resolve().parents[1]
 REPEATS = 3
+GROUP = gpfd.user_env.LOCKSTEP_GROUP  # As gpfd.evolve plays a generation's evaluations.
 
 
 def median_rate(measure):
@@ -156,6 +159,13 @@ def fitness_cost(scale):
     def python(env, **kwargs):
         return lambda s: gpfd.fitness(python_raw, env=env, set=settings, seed=s, **kwargs)
 
+    def group(env, **kwargs):
+        # Per evaluation: the time of the group divided by its size (the loop below divides by
+        # the number of seeds; each seed is one group here).
+        return lambda s: gpfd.fitness_of_each(
+            [python_raw] * GROUP, env=env, set=settings, seed=s, **kwargs
+        )
+
     # A callable (here gymnasium.make of the id) has no vector form: one environment at a time.
     cases = [
         ("cartpole built in (C++)", lambda s: gpfd.fitness(raw, set=builtin, seed=s)),
@@ -169,6 +179,13 @@ def fitness_cost(scale):
     ]
     if envpool_available():
         cases.append(("envpool/CartPole-v1", python("envpool/CartPole-v1")))
+    grouped = [
+        (f"gpfd/CartPole-v0, group of {GROUP}", group("gpfd/CartPole-v0", env_kwargs=discrete)),
+        (f"CartPole-v1, group of {GROUP}", group("CartPole-v1")),
+    ]
+    if envpool_available():
+        grouped.append((f"envpool/CartPole-v1, group of {GROUP}", group("envpool/CartPole-v1")))
+    cases += grouped
     # gpfd's vector environment through its Python step (a VectorFactory is not stepped through
     # the C++ engine the way its id is): the cost of gpfd's generic vector path.
     gpfd_vec = functools.partial(_gpfd_vec, kwargs=discrete)
@@ -189,7 +206,8 @@ def fitness_cost(scale):
             start = time.process_time()
             for seed in seeds:
                 run(seed)
-            times[name].append((time.process_time() - start) / len(seeds))
+            per_call = GROUP if (name, run) in grouped else 1
+            times[name].append((time.process_time() - start) / len(seeds) / per_call)
     base = statistics.median(times[cases[0][0]])
     for name, _ in cases:
         seconds = statistics.median(times[name])

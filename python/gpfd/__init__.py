@@ -8,10 +8,11 @@ The core is gpfd's C++ library; this package is a thin front over it:
   ``gpfd/GymnasiumCartPole-v1``: Gymnasium's CartPole-v1 task (two pushes, 500 steps), where
   ``gpfd/CartPole-v0`` defaults to a continuous force and 1000 steps.
 - ``wrappers.FeatureObservation``: a Gymnasium wrapper that shows an agent the features.
-- ``evolve``, ``fitness``, ``assess``, ``load_run``: discovery, GP's fitness, the test protocol and
-  results directories, as ``gpfd evolve`` and ``gpfd assess`` run them; ``evolve`` also runs on any
-  Gymnasium environment with a Box observation space, stepped in Python (all lanes of its vector
-  form at once where it has one: ``VectorFactory``, gpfd.vector_source).
+- ``evolve``, ``fitness`` (``fitness_of_each``: many sets at once), ``assess``, ``load_run``:
+  discovery, GP's fitness, the test protocol and results directories, as ``gpfd evolve`` and
+  ``gpfd assess`` run them; ``evolve`` also runs on any Gymnasium environment with a Box
+  observation space, stepped in Python (where it has a vector form, ``VectorFactory`` and
+  gpfd.vector_source, the lanes of 16 evaluations at once).
 
 docs/python.md in gpfd's repository is the guide.
 """
@@ -19,7 +20,7 @@ docs/python.md in gpfd's repository is the guide.
 from gpfd import envs as _envs
 from gpfd import wrappers
 from gpfd._core import FeatureSet, InputError, __version__
-from gpfd.discovery import Run, assess, builtin_configs, evolve, fitness, load_run
+from gpfd.discovery import Run, assess, builtin_configs, evolve, fitness, fitness_of_each, load_run
 from gpfd.user_env import EnvError
 from gpfd.vector_source import VectorFactory
 
@@ -36,6 +37,7 @@ __all__ = [
     "builtin_configs",
     "evolve",
     "fitness",
+    "fitness_of_each",
     "load_run",
     "wrappers",
 ]

@@ -12,7 +12,7 @@ import json
 import math
 import os
 import sys
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -208,6 +208,32 @@ def fitness(
         features = FeatureSet.load(os.fspath(features))
     return _core.fitness(
         "" if config is None else os.fspath(config), overrides, features, int(seed)
+    )
+
+
+def fitness_of_each(
+    features: Sequence[FeatureSet | str | os.PathLike],
+    config: str | os.PathLike | None = None,
+    *,
+    env: str | Callable[..., Any] | None = None,
+    seed: int = 1,
+    set: Mapping[str, Any] | Iterable[str] | None = None,
+    env_kwargs: dict[str, Any] | None = None,
+) -> list[float]:
+    """``fitness`` of each feature set, with the same seed, the evaluations played together: on
+    threads of this process, and where the environment has a vector form in one vector
+    environment (one lockstep group, as ``evolve`` plays a generation's evaluations), so that
+    each vector step advances all their episodes. Each value is the one ``fitness`` gives where
+    the vector form seeds each lane (gpfd's own environments, SyncVectorEnv)."""
+    if isinstance(features, (FeatureSet, str, os.PathLike)):
+        raise TypeError("fitness_of_each takes a list of feature sets; fitness takes one")
+    overrides, evaluator = _env_overrides(env, env_kwargs)
+    overrides += _overrides(set)
+    if evaluator is not None and config is None:
+        config = user_env.DEFAULT_CONFIG
+    sets = [f if isinstance(f, FeatureSet) else FeatureSet.load(os.fspath(f)) for f in features]
+    return _core.fitness_of_each(
+        "" if config is None else os.fspath(config), overrides, sets, int(seed)
     )
 
 

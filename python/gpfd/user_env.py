@@ -197,8 +197,27 @@ def _fitness_task(task: tuple[str, bytes, int]) -> float:
     return _core.trial_fitness(*task)
 
 
+def _fitness_group_task(task: tuple[str, list[tuple[bytes, int]]]) -> list[float]:
+    return _core.trial_fitness_group(*task)
+
+
 def _runs_task(task: tuple[str, int, tuple, list[int]]) -> list:
     return _core.train_runs(*task)
+
+
+def _runs_group_task(task: tuple[str, int, list[tuple[tuple, list[int]]]]) -> list[list]:
+    return _core.train_runs_group(*task)
+
+
+# Fitness evaluations played together in one vector environment (a lockstep group) where the
+# environment has a vector form: 30 lanes each for cartpole-quick's 3 trials of 10 episodes.
+# Fixed, not derived from the number of workers, so that a vector form seeded as a whole (one
+# seed mixed from the group's lanes') gives the same run for any number of workers.
+LOCKSTEP_GROUP = 16
+
+
+def _lockstep_groups(tasks: list) -> list[list]:
+    return [tasks[i : i + LOCKSTEP_GROUP] for i in range(0, len(tasks), LOCKSTEP_GROUP)]
 
 
 class Evaluator:
@@ -215,10 +234,20 @@ class Evaluator:
         self._pool: Pool | None = None
 
     def __call__(self, config_text: str, tasks: list[tuple[bytes, int]]) -> list[float]:
+        if self.lockstep:
+            groups = [(config_text, group) for group in _lockstep_groups(tasks)]
+            return [fitness for done in self._map(_fitness_group_task, groups) for fitness in done]
         work = [(config_text, genome, seed) for genome, seed in tasks]
-        if self.workers == 1:
-            return [_fitness_task(task) for task in work]
-        return self._started().map(_fitness_task, work, chunksize=1)
+        return list(self._map(_fitness_task, work))
+
+    @property
+    def lockstep(self) -> bool:
+        """Whether the environment has a vector form, whose calls go in lockstep groups: runs of
+        LOCKSTEP_GROUP tasks in task order, each group's episodes in one vector environment
+        (python/src/lockstep_group.hpp), whatever the number of workers."""
+        from gpfd.vector_source import VectorSource
+
+        return isinstance(self.factory, VectorSource) and self.factory.has_vector()
 
     def run_trials(
         self, config_text: str, budget: int, tasks: list[tuple[tuple, list[int]]]
@@ -226,10 +255,17 @@ class Evaluator:
         """The curves of each task (a feature set and the seeds of its runs) under the config
         and budget (run::LearningTask::Budget), in task order, as each is done
         (python/src/trial_runner.cpp)."""
+        if self.lockstep:
+            groups = [(config_text, budget, group) for group in _lockstep_groups(tasks)]
+            return (curves for done in self._map(_runs_group_task, groups) for curves in done)
         work = [(config_text, budget, features, seeds) for features, seeds in tasks]
+        return self._map(_runs_task, work)
+
+    def _map(self, function: Callable[[Any], Any], work: list) -> Iterator:
+        """function over work, in order, as each is done: here, or on the workers."""
         if self.workers == 1:
-            return map(_runs_task, work)
-        return self._started().imap(_runs_task, work, chunksize=1)
+            return map(function, work)
+        return self._started().imap(function, work, chunksize=1)
 
     def _started(self) -> Pool:
         if self._pool is None:

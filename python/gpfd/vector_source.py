@@ -51,6 +51,9 @@ class VectorSource:
     seeded_at_creation = False
     #: The key of ``info`` that counts each sub-environment's steps in its episode, if any.
     elapsed_key = ""
+    #: ``step(actions, env_id=ids)`` steps only the sub-environments ``ids`` and returns their
+    #: rows in that order (EnvPool): gpfd then steps only those that play an episode.
+    steps_subsets = False
 
     def __call__(self) -> gym.Env:
         raise NotImplementedError
@@ -123,6 +126,7 @@ class EnvPoolSource(VectorSource):
 
     seeded_at_creation = True
     elapsed_key = "elapsed_step"
+    steps_subsets = True
 
     def __init__(self, task: str, kwargs: dict[str, Any] | None = None):
         self.task = task
@@ -319,27 +323,30 @@ class VectorAdapter:
         self.elapsed_key = source.elapsed_key
         self.per_lane_seeds = False  # Its vector environment takes one seed per sub-environment.
         self.step_function: Callable[..., Any] | None = None
+        self.steps_subsets = False  # step_subset steps only the sub-environments given.
         # gpfd's own vector environment: its C++ engine, which C++ steps without Python.
         self.native_engine: Any = None
         self.actions: np.ndarray | None = None
 
     # -- what C++ calls ------------------------------------------------------------------------
 
-    def reset(self, seeds: list[int]) -> np.ndarray:
-        """Starts episodes in lanes 0..len(seeds)-1 (lane l from seeds[l]); returns every
+    def reset(self, seeds: list[int | None]) -> np.ndarray:
+        """Resets every sub-environment, those of lanes 0..len(seeds)-1 from their seeds (None:
+        a sub-environment that plays no episode, in a lockstep group's layout); returns every
         sub-environment's observation as float64 (N, d)."""
         lanes = len(seeds)
+        given = [int(s) for s in seeds if s is not None]
         if self.envs is None or self.num_envs < lanes:
             # Seeded at creation (EnvPool): from the first call's lanes; its sub-environments'
             # streams then go on from reset to reset.
-            self._open(max(lanes, self.num_envs), _mixed_seed(seeds))
+            self._open(max(lanes, self.num_envs), _mixed_seed(given))
         assert self.envs is not None
         if self.source.seeded_at_creation:
             seed: Any = None
         elif self.per_lane_seeds:
-            seed = [int(s) for s in seeds] + [None] * (self.num_envs - lanes)
+            seed = [None if s is None else int(s) for s in seeds] + [None] * (self.num_envs - lanes)
         else:
-            seed = _mixed_seed(seeds)
+            seed = _mixed_seed(given)
         try:
             result = self.envs.reset(seed=seed)
         except Exception as e:
@@ -352,6 +359,22 @@ class VectorAdapter:
                 f"reset of its vector form returned {type(result).__name__}, not (obs, info)"
             )
         return self._observations(result[0], "reset", 0, lanes)
+
+    def step_subset(self, sub_envs: Sequence[int]) -> Any:
+        """One step of the sub-environments `sub_envs` only (sorted; a source that
+        ``steps_subsets``): what step returns, with their rows in that order."""
+        assert self.step_function is not None and self.actions is not None
+        env_ids = np.asarray(sub_envs, dtype=np.int32)
+        result = self.step_function(self.actions[env_ids], env_id=env_ids)
+        if isinstance(result, tuple) and len(result) == 5 and isinstance(result[4], dict):
+            returned = result[4].get("env_id")
+            if returned is not None and not np.array_equal(np.asarray(returned), env_ids):
+                raise self._error(
+                    f"its vector form lies about its sub-environments: step(env_id=...) for "
+                    f"{_ranges(env_ids.tolist())} returned rows for "
+                    f"{_ranges(np.asarray(returned).tolist())}"
+                )
+        return result
 
     def reset_ended(self, mask: list[bool], step: int) -> np.ndarray:
         """Disabled autoreset: resets the sub-environments in `mask` (their episodes ended)."""
@@ -380,9 +403,10 @@ class VectorAdapter:
             "not (obs, rewards, terminated, truncated, info)"
         )
 
-    def as_array(self, value: Any, what: str, step: int) -> np.ndarray:
-        """`what` of a step as the array C++ reads: observations float64 (N, d), the rest (N,)."""
-        n = self.num_envs
+    def as_array(self, value: Any, what: str, step: int, rows: int | None = None) -> np.ndarray:
+        """`what` of a step as the array C++ reads: observations float64 (N, d), the rest (N,);
+        N: `rows` (the sub-environments a step of a subset returned), else num_envs."""
+        n = self.num_envs if rows is None else rows
         try:
             array = np.asarray(value, dtype=bool if what in ("terminated", "truncated") else float)
         except (TypeError, ValueError) as e:
@@ -405,11 +429,13 @@ class VectorAdapter:
             )
         return array
 
-    def final_observations(self, info: dict, step: int) -> tuple[np.ndarray, np.ndarray]:
+    def final_observations(
+        self, info: dict, step: int, rows: int | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
         """(mask, observations) of info["_final_obs"] and info["final_obs"] (same-step
         autoreset), observations float64 (N, d) with rows where the mask is set."""
-        mask = self.as_array(info["_final_obs"], "info['_final_obs']", step)
-        obs = np.zeros((self.num_envs, self.state_dim))
+        mask = self.as_array(info["_final_obs"], "info['_final_obs']", step, rows)
+        obs = np.zeros((len(mask), self.state_dim))
         final = info.get("final_obs")
         for i in np.flatnonzero(mask):
             try:
@@ -482,6 +508,7 @@ class VectorAdapter:
         self.per_lane_seeds = self.source.seeds_lanes(envs)
         self.resets_ended = mode == AutoresetMode.DISABLED
         self.step_function = envs.step
+        self.steps_subsets = self.source.steps_subsets
         from gpfd.vector import GpfdVectorEnv
 
         # Made from a gpfd id (not a VectorFactory, whose make_vec may be anything).

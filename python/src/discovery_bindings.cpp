@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <nanobind/stl/map.h>
 #include <nanobind/stl/optional.h>
+#include <nanobind/stl/pair.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
@@ -27,6 +28,7 @@
 #include "gpfd/service/evolve.hpp"
 #include "gpfd/service/evolve_text.hpp"
 #include "gpfd/service/feature_source.hpp"
+#include "lockstep_group.hpp"
 #include "trial_runner.hpp"
 
 namespace gpfd::python {
@@ -277,6 +279,27 @@ double trialFitness(const std::string& configText, const nb::bytes& genome, std:
   return run::trialFitness(task, g, rng);
 }
 
+// The fitness of each genome, all in one lockstep group (lockstep_group.hpp): what trialFitness
+// gives each, where the vector form seeds each lane.
+std::vector<double> trialFitnessGroupOf(
+    const std::string& configText, const std::vector<std::pair<nb::bytes, std::uint64_t>>& tasks) {
+  const run::LearningTask& task = cachedTask(configText, run::LearningTask::Budget::Trial);
+  std::vector<expr::Genome> genomes;
+  std::vector<std::uint64_t> seeds;
+  for (const auto& [genome, seed] : tasks) {
+    genomes.push_back(unpackGenome(std::string_view(genome.c_str(), genome.size()),
+                                   static_cast<int>(task.stateDim())));
+    seeds.push_back(seed);
+  }
+  nb::gil_scoped_release release;
+  std::vector<double> fitness(genomes.size(), 0.0);
+  playInGroup(genomes.size(), [&](std::size_t i) {
+    Rng rng(seeds[i]);
+    fitness[i] = run::trialFitness(task, genomes[i], rng);
+  });
+  return fitness;
+}
+
 service::FeatureSource sourceOf(const FeatureSet& set) {
   return {.name = set.name(), .path = {}, .file = set.file()};
 }
@@ -286,6 +309,15 @@ double fitness(const std::string& config, const std::vector<std::string>& overri
   const auto source = sourceOf(set);
   nb::gil_scoped_release release;
   return service::trialFitness(config, overrides, source, seed);
+}
+
+std::vector<double> fitnessOfEach(const std::string& config,
+                                  const std::vector<std::string>& overrides,
+                                  const std::vector<const FeatureSet*>& sets, std::uint64_t seed) {
+  std::vector<service::FeatureSource> sources;
+  for (const FeatureSet* set : sets) sources.push_back(sourceOf(*set));
+  nb::gil_scoped_release release;
+  return service::trialFitnesses(config, overrides, sources, seed, playInGroup);
 }
 
 nb::dict assess(const std::string& config, const std::vector<std::string>& overrides,
@@ -356,6 +388,12 @@ void bindDiscovery(nb::module_& m) {
         "(results dir, finished).");
   m.def("trial_fitness", &trialFitness, nb::arg("config_text"), nb::arg("genome"), nb::arg("seed"),
         "run::trialFitness of a packed genome (the worker processes' task).");
+  m.def("trial_fitness_group", &trialFitnessGroupOf, nb::arg("config_text"), nb::arg("tasks"),
+        "trial_fitness of each (packed genome, seed), played in one lockstep group: the "
+        "evaluations' episodes share one vector environment.");
+  m.def("fitness_of_each", &fitnessOfEach, nb::arg("config"), nb::arg("overrides"),
+        nb::arg("features"), nb::arg("seed"),
+        "GP's fitness of each feature set under a config, the same seed, in one lockstep group.");
   m.def("fitness", &fitness, nb::arg("config"), nb::arg("overrides"), nb::arg("features"),
         nb::arg("seed"), "GP's fitness of a feature set under a config.");
   m.def(

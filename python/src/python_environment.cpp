@@ -13,6 +13,7 @@
 #include "bindings.hpp"
 #include "env_batch.hpp"
 #include "gpfd/util/error.hpp"
+#include "trial_runner.hpp"
 
 namespace gpfd::python {
 namespace {
@@ -143,6 +144,7 @@ void bindPythonEnvironments(nb::module_& m) {
       "register_python_env",
       [](const std::string& name, const std::string& description) {
         auto& registry = env::Registry::global();
+        forgetCachedTasks();  // The name may now make another environment.
         for (const auto& known : registry.names()) {
           if (known == name) return;  // gpfd.user_env keeps the current factory per name.
         }

@@ -4,12 +4,14 @@
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
+#include <algorithm>
 #include <map>
 #include <mutex>
 #include <stdexcept>
 
 #include "genome_blob.hpp"
 #include "gpfd/run/run_grid.hpp"
+#include "lockstep_group.hpp"
 
 namespace gpfd::python {
 namespace {
@@ -88,8 +90,13 @@ class PythonTrialRunner final : public run::TrialRunner {
     const std::string configText = run::formatExperimentConfig(task.config());
     nb::gil_scoped_acquire gil;
     const auto workers = nb::cast<std::size_t>(evaluator_.attr("workers"));
+    // Runs played side by side in one call; on a vector form a fixed number (the trials of a
+    // fitness evaluation), so that one seeded as a whole gives the same curves for any number of
+    // workers (the evaluator groups the calls in lockstep groups).
     const std::size_t group =
-        run::runGroupSize(batch.sets.size(), runs, workers, task.config().trials);
+        nb::cast<bool>(evaluator_.attr("lockstep"))
+            ? static_cast<std::size_t>(std::max(1, task.config().trials))
+            : run::runGroupSize(batch.sets.size(), runs, workers, task.config().trials);
     // Task j: runs [first, first + count) of set s, in this order.
     struct Slot {
       std::size_t set, first, count;
@@ -130,22 +137,57 @@ class PythonTrialRunner final : public run::TrialRunner {
   nb::object evaluator_;
 };
 
-nb::list trainRuns(const std::string& configText, int budget, const nb::tuple& features,
-                   const std::vector<std::uint64_t>& seeds) {
+const run::LearningTask& taskOf(const std::string& configText, int budget) {
   if (budget < 0 || budget > static_cast<int>(Budget::Assessment)) {
     throw std::invalid_argument(fmt::format("unknown budget {}", budget));
   }
-  const run::LearningTask& task = cachedTask(configText, static_cast<Budget>(budget));
+  return cachedTask(configText, static_cast<Budget>(budget));
+}
+
+std::vector<rl::LearningCurve> trainSet(const run::LearningTask& task,
+                                        const run::TrialFeatures& set,
+                                        const std::vector<std::uint64_t>& seeds) {
+  const auto map = set.map(task);
+  std::vector<Rng> rngs(seeds.begin(), seeds.end());
+  return task.trainRuns(*map, rngs);
+}
+
+nb::list curvesToPython(const std::vector<rl::LearningCurve>& curves) {
+  nb::list out;
+  for (const auto& curve : curves) out.append(curveToPython(curve));
+  return out;
+}
+
+nb::list trainRuns(const std::string& configText, int budget, const nb::tuple& features,
+                   const std::vector<std::uint64_t>& seeds) {
+  const run::LearningTask& task = taskOf(configText, budget);
   const run::TrialFeatures set = featuresFromPython(features, static_cast<int>(task.stateDim()));
   std::vector<rl::LearningCurve> curves;
   {
     nb::gil_scoped_release release;
-    const auto map = set.map(task);
-    std::vector<Rng> rngs(seeds.begin(), seeds.end());
-    curves = task.trainRuns(*map, rngs);
+    curves = trainSet(task, set, seeds);
+  }
+  return curvesToPython(curves);
+}
+
+// train_runs of each (features, seeds), played in one lockstep group (lockstep_group.hpp).
+nb::list trainRunsGroup(const std::string& configText, int budget, const nb::list& tasks) {
+  const run::LearningTask& task = taskOf(configText, budget);
+  std::vector<run::TrialFeatures> sets;
+  std::vector<std::vector<std::uint64_t>> seeds;
+  for (nb::handle t : tasks) {
+    const auto pair = nb::cast<nb::tuple>(t);
+    sets.push_back(
+        featuresFromPython(nb::cast<nb::tuple>(pair[0]), static_cast<int>(task.stateDim())));
+    seeds.push_back(nb::cast<std::vector<std::uint64_t>>(pair[1]));
+  }
+  std::vector<std::vector<rl::LearningCurve>> curves(sets.size());
+  {
+    nb::gil_scoped_release release;
+    playInGroup(sets.size(), [&](std::size_t i) { curves[i] = trainSet(task, sets[i], seeds[i]); });
   }
   nb::list out;
-  for (const auto& curve : curves) out.append(curveToPython(curve));
+  for (const auto& c : curves) out.append(curvesToPython(c));
   return out;
 }
 
@@ -155,11 +197,17 @@ std::shared_ptr<run::TrialRunner> pythonTrialRunner(nb::object evaluator) {
   return std::make_shared<PythonTrialRunner>(std::move(evaluator));
 }
 
+namespace {
+
+// The tasks of cachedTask, by config text and budget.
+std::mutex cacheMutex;
+std::map<std::pair<std::string, Budget>, std::unique_ptr<run::LearningTask>> cachedTasks;
+
+}  // namespace
+
 const run::LearningTask& cachedTask(const std::string& configText, Budget budget) {
-  static std::mutex mutex;
-  static std::map<std::pair<std::string, Budget>, std::unique_ptr<run::LearningTask>> tasks;
-  const std::lock_guard lock(mutex);
-  auto& task = tasks[{configText, budget}];
+  const std::lock_guard lock(cacheMutex);
+  auto& task = cachedTasks[{configText, budget}];
   if (!task) {
     task = std::make_unique<run::LearningTask>(run::parseExperimentConfig(configText, "config"),
                                                budget);
@@ -167,11 +215,20 @@ const run::LearningTask& cachedTask(const std::string& configText, Budget budget
   return *task;
 }
 
+void forgetCachedTasks() {
+  const std::lock_guard lock(cacheMutex);
+  cachedTasks.clear();
+}
+
 void bindTrialRunner(nb::module_& m) {
   m.def("train_runs", &trainRuns, nb::arg("config_text"), nb::arg("budget"), nb::arg("features"),
         nb::arg("seeds"),
         "Learning runs of one feature set, run k seeded Rng(seeds[k]) (the worker processes' "
         "task for validation, confirmation and assessment); their curves as plain values.");
+  m.def("train_runs_group", &trainRunsGroup, nb::arg("config_text"), nb::arg("budget"),
+        nb::arg("tasks"),
+        "train_runs of each (features, seeds), played in one lockstep group: the runs' episodes "
+        "share one vector environment.");
 }
 
 }  // namespace gpfd::python

@@ -21,5 +21,8 @@ std::shared_ptr<run::TrialRunner> pythonTrialRunner(nb::object evaluator);
 // One LearningTask per config text and budget, in this process (the workers' tasks).
 const run::LearningTask& cachedTask(const std::string& configText,
                                     run::LearningTask::Budget budget);
+// Drops every cached task: an environment registered from Python under a name already used (a
+// second lambda: "python:<lambda>") makes its config texts mean another environment.
+void forgetCachedTasks();
 
 }  // namespace gpfd::python

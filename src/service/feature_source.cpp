@@ -27,16 +27,34 @@ expr::FeaturesFile featuresFor(const FeatureSource& source, const run::LearningT
 
 double trialFitness(const std::string& config, const std::vector<std::string>& overrides,
                     const FeatureSource& source, std::uint64_t seed) {
+  return trialFitnesses(config, overrides, {source}, seed).front();
+}
+
+std::vector<double> trialFitnesses(const std::string& config,
+                                   const std::vector<std::string>& overrides,
+                                   const std::vector<FeatureSource>& sources, std::uint64_t seed,
+                                   const PlayJobs& play) {
   const auto resolved = loadConfig(config, overrides);
   run::validate(resolved);
   const run::LearningTask task(resolved, run::LearningTask::Budget::Trial);
-  const auto file = featuresFor(source, task);
-  Rng rng(seed);
-  try {
-    return run::trialFitness(task, file.genome, rng);
-  } catch (const std::invalid_argument& e) {  // Past the compiler's limits.
-    throw InputError(e.what(), source.path.empty() ? source.name : source.path);
+  std::vector<expr::FeaturesFile> files;
+  for (const FeatureSource& source : sources) files.push_back(featuresFor(source, task));
+  std::vector<double> fitness(sources.size(), 0.0);
+  const auto evaluate = [&](std::size_t i) {
+    Rng rng(seed);
+    try {
+      fitness[i] = run::trialFitness(task, files[i].genome, rng);
+    } catch (const std::invalid_argument& e) {  // Past the compiler's limits.
+      const FeatureSource& source = sources[i];
+      throw InputError(e.what(), source.path.empty() ? source.name : source.path);
+    }
+  };
+  if (play) {
+    play(sources.size(), evaluate);
+  } else {
+    for (std::size_t i = 0; i < sources.size(); ++i) evaluate(i);
   }
+  return fitness;
 }
 
 }  // namespace gpfd::service

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,5 +27,14 @@ expr::FeaturesFile featuresFor(const FeatureSource& source, const run::LearningT
 // evaluation of `gpfd evolve` computes it (run::trialFitness with Rng(seed)).
 double trialFitness(const std::string& config, const std::vector<std::string>& overrides,
                     const FeatureSource& source, std::uint64_t seed);
+
+// How evaluations run: play(n, job) calls job(i) once for each i < n, in any order or at once.
+using PlayJobs = std::function<void(std::size_t n, const std::function<void(std::size_t)>& job)>;
+// trialFitness of each source with the same seed, the evaluations run by `play` (empty: one after
+// another); Python plays them in one lockstep group.
+std::vector<double> trialFitnesses(const std::string& config,
+                                   const std::vector<std::string>& overrides,
+                                   const std::vector<FeatureSource>& sources, std::uint64_t seed,
+                                   const PlayJobs& play = {});
 
 }  // namespace gpfd::service
