@@ -18,38 +18,15 @@ machine with 2 cores, the wall time of threads=2 is about that plus half the wor
 import argparse
 import os
 import resource
+import sys
 import tempfile
 import time
 from pathlib import Path
 
-import gymnasium as gym
-import numpy as np
-
 import gpfd
 
-
-class Point(gym.Env):
-    """A point on a line, pushed by the action; reward -|x| per step; 50 steps."""
-
-    def __init__(self):
-        self.observation_space = gym.spaces.Box(-10.0, 10.0, (2,), np.float64)
-        self.action_space = gym.spaces.Box(-1.0, 1.0, (1,), np.float32)
-        self.state = np.zeros(2)
-        self.steps = 0
-
-    def reset(self, *, seed=None, options=None):
-        super().reset(seed=seed)
-        self.state = self.np_random.uniform(-1.0, 1.0, 2)
-        self.steps = 0
-        return self.state.copy(), {}
-
-    def step(self, action):
-        x, v = self.state
-        v = 0.9 * v + 0.1 * float(np.clip(action[0], -1.0, 1.0))
-        x = float(np.clip(x + v, -10.0, 10.0))
-        self.state = np.array([x, v])
-        self.steps += 1
-        return self.state.copy(), -abs(x), False, self.steps >= 50, {}
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "python"))
+from point_env import Point  # noqa: E402  (the tests' tiny environment)
 
 
 def live_children_seconds() -> float:

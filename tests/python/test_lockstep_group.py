@@ -143,16 +143,36 @@ def test_a_vector_form_seeded_as_a_whole_gives_one_run_for_any_number_of_workers
     assert list(one.history["mean"]) == list(two.history["mean"])
 
 
+@pytest.mark.parametrize(
+    "fault, message",
+    [
+        (
+            "raises",
+            r"step of its vector form raised RuntimeError: the simulator crashed \(vector step "
+            r"3, lanes [0-9, -]+ playing episodes\)",
+        ),
+        (
+            "nan",
+            r"the observation of lane 1 after step 3 of its episode \(vector step 3\) holds nan",
+        ),
+        (
+            "shape",
+            r"its vector form lies about its spaces: step returned observations of shape "
+            r"\(\d+, 3\) at vector step 1, for \d+ sub-environments",
+        ),
+        (
+            "resets itself",
+            r"lane \d+ of its vector form reset on its own at vector step 3",
+        ),
+    ],
+    ids=["raises", "nan", "shape", "resets-itself"],
+)
 @pytest.mark.parametrize("threads", [1, 2])
-def test_a_failing_vector_step_stops_the_group_with_the_error_that_names_it(threads, tmp_path):
-    faulty = gpfd.VectorFactory(
-        functools.partial(toy_vector, fault="raises", at=3), per_lane_seeds=True
-    )
-    with pytest.raises(
-        gpfd.EnvError,
-        match=r"step of its vector form raised RuntimeError: the simulator crashed \(vector step "
-        r"3, lanes [0-9, -]+ playing episodes\)",
-    ):
+def test_a_misbehaving_vector_form_stops_a_group_with_the_error_that_names_it(
+    fault, message, threads, tmp_path
+):
+    faulty = gpfd.VectorFactory(functools.partial(toy_vector, fault=fault, at=3))
+    with pytest.raises(gpfd.EnvError, match="python:toy_vector: " + message):
         gpfd.evolve(
             env=faulty,
             seed=5,

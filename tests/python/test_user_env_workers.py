@@ -9,11 +9,11 @@ import textwrap
 from pathlib import Path
 from typing import Any
 
-import gymnasium as gym
 import numpy as np
 
 import gpfd
 from gpfd import user_env
+from point_env import Point
 
 # Short trials, validation and confirmation, few sampled states: each run takes seconds.
 SMALL: dict[str, Any] = {
@@ -29,32 +29,18 @@ SMALL: dict[str, Any] = {
 }
 
 
-class CountedPoint(gym.Env):
-    """A point pushed along a line (30 steps) that notes each reset in `directory`, one line in
-    a file named after the process."""
-
-    observation_space = gym.spaces.Box(-10.0, 10.0, (2,), np.float64)
-    action_space = gym.spaces.Box(-1.0, 1.0, (1,), np.float32)
+class CountedPoint(Point):
+    """Point (30 steps) that notes each reset in `directory`, one line in a file named after the
+    process."""
 
     def __init__(self, directory: str):
+        super().__init__(steps=30)
         self.log = Path(directory, str(os.getpid()))
-        self.state = np.zeros(2)
-        self.steps = 0
 
     def reset(self, *, seed=None, options=None):
-        super().reset(seed=seed)
         with self.log.open("a") as f:
             f.write("r\n")
-        self.state = self.np_random.uniform(-1.0, 1.0, 2)
-        self.steps = 0
-        return self.state.copy(), {}
-
-    def step(self, action):
-        x, v = self.state
-        v = 0.9 * v + 0.1 * float(np.clip(action[0], -1.0, 1.0))
-        self.state = np.array([float(np.clip(x + v, -10.0, 10.0)), v])
-        self.steps += 1
-        return self.state.copy(), -abs(self.state[0]), False, self.steps >= 30, {}
+        return super().reset(seed=seed, options=options)
 
 
 def resets(directory: Path) -> dict[int, int]:
