@@ -53,6 +53,15 @@ def _toml_value(value: Any) -> str:
     raise TypeError(f"cannot write {type(value).__name__} into a config: {value!r}")
 
 
+def _whole(name: str, value: Any, least: int) -> int:
+    """An integer argument `name`, at least `least`: TypeError or ValueError naming it."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"{name} must be an integer, not {type(value).__name__} ({value!r})")
+    if value < least:
+        raise ValueError(f"{name} must be at least {least}, got {value}")
+    return int(value)
+
+
 def _param_text(value: Any) -> str:
     """A ``--param`` value as text: strings as they are, numbers and bools as TOML writes them."""
     return value if isinstance(value, str) else _toml_value(value)
@@ -150,10 +159,13 @@ def evolve(
             evaluator.name = stored
     else:
         if seed is not None:
-            overrides.append(f"seed={int(seed)}")
+            overrides.append(f"seed={_whole('seed', seed, 0)}")
         if population is not None:
-            overrides.append(f"gp.population={int(population)}")
+            overrides.append(f"gp.population={_whole('population', population, 1)}")
         overrides += _overrides(set)
+    threads = _whole("threads", threads, 0)
+    if generations is not None:
+        generations = _whole("generations", generations, 0)
     if evaluator is not None:
         evaluator.workers = threads if threads > 0 else (os.cpu_count() or 1)
 
@@ -171,8 +183,8 @@ def evolve(
             None if out is None else os.fspath(out),
             bool(force),
             "" if resume is None else os.fspath(resume),
-            int(threads),
-            None if generations is None else int(generations),
+            threads,
+            generations,
             None,
             on_generation,
             evaluator,
@@ -231,10 +243,21 @@ def fitness_of_each(
     overrides += _overrides(set)
     if evaluator is not None and config is None:
         config = user_env.DEFAULT_CONFIG
-    sets = [f if isinstance(f, FeatureSet) else FeatureSet.load(os.fspath(f)) for f in features]
+    sets = [_feature_set(f, f"features[{i}]") for i, f in enumerate(features)]
     return _core.fitness_of_each(
         "" if config is None else os.fspath(config), overrides, sets, int(seed)
     )
+
+
+def _feature_set(value: Any, name: str) -> FeatureSet:
+    """A FeatureSet, or one read from a features file."""
+    if isinstance(value, FeatureSet):
+        return value
+    if not isinstance(value, (str, os.PathLike)):
+        raise TypeError(
+            f"{name} must be a FeatureSet or a features file, not {type(value).__name__}"
+        )
+    return FeatureSet.load(os.fspath(value))
 
 
 def _table(columns: dict[str, list], as_frame: bool | None) -> Any:
@@ -305,6 +328,7 @@ def assess(
     overrides, evaluator = _env_overrides(env, env_kwargs)
     # gpfd's own environment by name; one stepped in Python by the name it is registered under.
     env_name = evaluator.name if evaluator is not None else env if isinstance(env, str) else ""
+    threads = _whole("threads", threads, 0)
     if evaluator is not None:
         evaluator.workers = threads if threads > 0 else (os.cpu_count() or 1)
         if config is None:
@@ -322,14 +346,14 @@ def assess(
             overrides,
             env_name,
             text_params,
-            int(runs or 0),
-            int(budget or 0),
-            int(seed),
-            int(threads),
+            0 if runs is None else _whole("runs", runs, 1),
+            0 if budget is None else _whole("budget", budget, 1),
+            _whole("seed", seed, 0),
+            threads,
             sets,
             bool(raw),
             bool(with_original),
-            int(fourier),
+            _whole("fourier", fourier, 0),
             None if out is None else os.fspath(out),
             bool(force),
             evaluator,

@@ -28,7 +28,13 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 from gymnasium.vector import AutoresetMode, VectorEnv
-from stable_baselines3.common.vec_env import VecEnv as _SB3VecEnv
+
+try:
+    from stable_baselines3.common.vec_env import VecEnv as _SB3VecEnv
+except ImportError as e:  # The optional extra.
+    raise ImportError(
+        "gpfd.sb3 needs Stable-Baselines3: pip install 'gpfd[sb3]' (or stable-baselines3)"
+    ) from e
 
 from gpfd._core import FeatureSet
 from gpfd.wrappers import check_features

@@ -211,13 +211,24 @@ def _runs_group_task(task: tuple[str, int, list[tuple[tuple, list[int]]]]) -> li
 
 # Fitness evaluations played together in one vector environment (a lockstep group) where the
 # environment has a vector form: 30 lanes each for cartpole-quick's 3 trials of 10 episodes.
-# Fixed, not derived from the number of workers, so that a vector form seeded as a whole (one
-# seed mixed from the group's lanes') gives the same run for any number of workers.
 LOCKSTEP_GROUP = 16
 
 
 def _lockstep_groups(tasks: list) -> list[list]:
-    return [tasks[i : i + LOCKSTEP_GROUP] for i in range(0, len(tasks), LOCKSTEP_GROUP)]
+    """Consecutive groups of at most LOCKSTEP_GROUP tasks, as equal as may be, an even number of
+    them (two workers share them evenly; 21 evaluations: 11 and 10, not 16 and 5). Their number
+    follows from the tasks alone, never from the workers, so that a vector form seeded as a whole
+    (one seed mixed from a group's lanes) gives the same run for any number of workers."""
+    n = len(tasks)
+    count = -(-n // LOCKSTEP_GROUP)
+    if count % 2 == 1 and n > 1:
+        count += 1
+    groups, start = [], 0
+    for i in range(count):
+        size = n // count + (1 if i < n % count else 0)
+        groups.append(tasks[start : start + size])
+        start += size
+    return groups
 
 
 class Evaluator:
@@ -242,9 +253,9 @@ class Evaluator:
 
     @property
     def lockstep(self) -> bool:
-        """Whether the environment has a vector form, whose calls go in lockstep groups: runs of
-        LOCKSTEP_GROUP tasks in task order, each group's episodes in one vector environment
-        (python/src/lockstep_group.hpp), whatever the number of workers."""
+        """Whether the environment has a vector form, whose calls go in lockstep groups
+        (_lockstep_groups), each group's episodes in one vector environment
+        (python/src/lockstep_group.hpp)."""
         from gpfd.vector_source import VectorSource
 
         return isinstance(self.factory, VectorSource) and self.factory.has_vector()

@@ -53,16 +53,8 @@ class ScalarShape final : public env::Environment {
 class PythonVectorBatch final : public env::BatchEnvironment {
  public:
   PythonVectorBatch(std::unique_ptr<env::Environment> scalar, env::BatchIsa isa,
-                    std::shared_ptr<VectorHub> hub, std::size_t member, bool alone)
-      : BatchEnvironment(std::move(scalar), isa),
-        hub_(std::move(hub)),
-        member_(member),
-        alone_(alone) {}
-
-  // A group's members leave when their evaluation ends (LockstepGroup::leave), not here.
-  ~PythonVectorBatch() override {
-    if (alone_) hub_->leave(member_);
-  }
+                    std::shared_ptr<VectorHub> hub, std::size_t member)
+      : BatchEnvironment(std::move(scalar), isa), hub_(std::move(hub)), member_(member) {}
 
   void reset(Rng& /*rng*/, const env::BatchBuffers& /*io*/, std::size_t /*lane*/) override {
     throw InputError("the vector form of " + scalar().name() +
@@ -78,8 +70,7 @@ class PythonVectorBatch final : public env::BatchEnvironment {
 
  private:
   std::shared_ptr<VectorHub> hub_;
-  std::size_t member_;
-  bool alone_;  // The hub's only member.
+  std::size_t member_;  // A group's members leave when their job ends (LockstepGroup::leave).
 };
 
 }  // namespace
@@ -105,9 +96,9 @@ env::BatchForm pythonVectorForm(const std::string& name) {
     };
     if (LockstepGroup* group = LockstepGroup::current()) {
       return std::make_unique<PythonVectorBatch>(std::move(scalar), isa, group->hub(name, makeHub),
-                                                 LockstepGroup::currentMember(), false);
+                                                 LockstepGroup::currentMember());
     }
-    return std::make_unique<PythonVectorBatch>(std::move(scalar), isa, makeHub(1), 0, true);
+    return std::make_unique<PythonVectorBatch>(std::move(scalar), isa, makeHub(1), 0);
   };
   return form;
 }

@@ -195,3 +195,19 @@ def test_two_lambdas_one_after_the_other_are_two_environments(tmp_path):
     )
     assert first.best is not None and second.best is not None
     assert "x3" in second.best.to_text() or "x2" in second.best.to_text()
+
+
+@pytest.mark.parametrize(
+    "call, error, message",
+    [
+        (lambda: gpfd.fitness_of_each([42], env=Toy), TypeError, r"features\[0\] must be a"),
+        (lambda: gpfd.assess(env=Toy, runs=-1), ValueError, "runs must be at least 1, got -1"),
+        (lambda: gpfd.assess(env=Toy, threads="x"), TypeError, "threads must be an integer"),
+        (lambda: gpfd.assess(env=Toy, budget=0), ValueError, "budget must be at least 1"),
+        (lambda: gpfd.evolve(env=Toy, population=2.5), TypeError, "population must be an"),
+        (lambda: gpfd.evolve(env=Toy, generations=-1), ValueError, "generations must be at"),
+    ],
+)
+def test_bad_python_arguments_are_errors_that_name_them(call, error, message):
+    with pytest.raises(error, match=message):
+        call()
