@@ -107,6 +107,7 @@ def evolve(
     threads: int = 0,
     population: int | None = None,
     generations: int | None = None,
+    runs: int | None = None,
     out: str | os.PathLike | None = None,
     set: Mapping[str, Any] | Iterable[str] | None = None,
     callback: Callback | None = None,
@@ -123,6 +124,9 @@ def evolve(
         callable returning a Gymnasium environment, stepped in Python in ``threads`` worker
         processes (see gpfd.user_env); ``env_kwargs`` go to ``gymnasium.make`` or the callable.
     seed, population, generations: override the config's, like the command's flags.
+    runs: N independent runs (run r in ``run-0r``, seeded from ``seed`` and r; run 1 is the single
+        run) and a verdict on the method over them, like ``gpfd evolve --runs N`` (runs.csv);
+        the Run returned is their directory's.
     threads: worker threads (processes for a Python environment); 0: all cores. Never changes
         the results.
     out: the results directory (default ``results/<name>``, or ``results/<name>-N`` when taken:
@@ -185,7 +189,7 @@ def evolve(
             "" if resume is None else os.fspath(resume),
             threads,
             generations,
-            None,
+            None if runs is None else _whole("runs", runs, 1),
             on_generation,
             evaluator,
             bool(verbose),

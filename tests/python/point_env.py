@@ -24,7 +24,7 @@ class Point(gym.Env):
         return self.state.copy(), {}
 
     def step(self, action):
-        x, v = self.state
+        x, v = float(self.state[0]), float(self.state[1])
         v = 0.9 * v + 0.1 * float(np.clip(action[0], -1.0, 1.0))
         x = float(np.clip(x + v, -10.0, 10.0))
         self.state = np.array([x, v])

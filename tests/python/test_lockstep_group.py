@@ -200,11 +200,24 @@ def test_two_lambdas_one_after_the_other_are_two_environments(tmp_path):
 @pytest.mark.parametrize(
     "call, error, message",
     [
-        (lambda: gpfd.fitness_of_each([42], env=Toy), TypeError, r"features\[0\] must be a"),
+        (
+            lambda: gpfd.fitness_of_each([42], env=Toy),  # type: ignore[list-item]
+            TypeError,
+            r"features\[0\] must be a",
+        ),
         (lambda: gpfd.assess(env=Toy, runs=-1), ValueError, "runs must be at least 1, got -1"),
-        (lambda: gpfd.assess(env=Toy, threads="x"), TypeError, "threads must be an integer"),
+        (
+            lambda: gpfd.assess(env=Toy, threads="x"),  # type: ignore[arg-type]
+            TypeError,
+            "threads must be an integer",
+        ),
         (lambda: gpfd.assess(env=Toy, budget=0), ValueError, "budget must be at least 1"),
-        (lambda: gpfd.evolve(env=Toy, population=2.5), TypeError, "population must be an"),
+        (
+            lambda: gpfd.evolve(env=Toy, population=2.5),  # type: ignore[arg-type]
+            TypeError,
+            "population must be an",
+        ),
+        (lambda: gpfd.evolve(env=Toy, runs=0), ValueError, "runs must be at least 1, got 0"),
         (lambda: gpfd.evolve(env=Toy, generations=-1), ValueError, "generations must be at"),
     ],
 )

@@ -79,6 +79,18 @@ def test_a_discrete_action_space_works(tmp_path):
     assert run.best is not None and run.best.variables == ["x0", "x1", "x2", "x3"]
 
 
+def test_independent_runs_on_a_python_environment(tmp_path):
+    # runs=2, as gpfd evolve --runs 2: run 1 is the single run, and runs.csv gives the verdict.
+    small = {**SHORT, "set": TINY | {"validation.candidates": 2, "validation.seeds": 2}}
+    sets = gpfd.evolve(env="CartPole-v1", **small, runs=2, threads=1, out=tmp_path / "runs")
+    single = gpfd.evolve(env="CartPole-v1", **small, threads=1, out=tmp_path / "single")
+    assert (sets.dir / "runs.csv").is_file()
+    assert single.best is not None
+    first = gpfd.FeatureSet.load(str(tmp_path / "runs" / "run-01" / "best.features"))
+    assert first.to_text() == single.best.to_text()
+    assert (tmp_path / "runs" / "run-02" / "best.features").is_file()
+
+
 def test_fitness_on_a_python_environment():
     fs = gpfd.FeatureSet.parse("x0 * x1\nx1\n", variables=["x0", "x1"])
     value = gpfd.fitness(fs, env="MountainCarContinuous-v0", set=TINY, seed=2)
