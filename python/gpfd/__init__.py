@@ -12,7 +12,7 @@ The core is gpfd's C++ library; this package is a thin front over it:
   discovery, GP's fitness, the test protocol and results directories, as ``gpfd evolve`` and
   ``gpfd assess`` run them; ``evolve`` also runs on any Gymnasium environment with a Box
   observation space, stepped in Python (where it has a vector form, ``VectorFactory`` and
-  gpfd.vector_source, the lanes of 16 evaluations at once).
+  gpfd.vector_source, the lanes of up to 16 evaluations at once).
 
 docs/python.md in gpfd's repository is the guide.
 """

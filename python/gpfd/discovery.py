@@ -220,10 +220,11 @@ def fitness(
     overrides += _overrides(set)
     if evaluator is not None and config is None:
         config = user_env.DEFAULT_CONFIG
-    if not isinstance(features, FeatureSet):
-        features = FeatureSet.load(os.fspath(features))
     return _core.fitness(
-        "" if config is None else os.fspath(config), overrides, features, int(seed)
+        "" if config is None else os.fspath(config),
+        overrides,
+        _feature_set(features, "features"),
+        _whole("seed", seed, 0),
     )
 
 
@@ -236,11 +237,11 @@ def fitness_of_each(
     set: Mapping[str, Any] | Iterable[str] | None = None,
     env_kwargs: dict[str, Any] | None = None,
 ) -> list[float]:
-    """``fitness`` of each feature set, with the same seed, the evaluations played together: on
-    threads of this process, and where the environment has a vector form in one vector
-    environment (one lockstep group, as ``evolve`` plays a generation's evaluations), so that
-    each vector step advances all their episodes. Each value is the one ``fitness`` gives where
-    the vector form seeds each lane (gpfd's own environments, SyncVectorEnv)."""
+    """``fitness`` of each feature set, with the same seed, in this process; where the environment
+    has a vector form, the evaluations play together in one vector environment (one lockstep
+    group, as ``evolve`` plays a generation's evaluations), each vector step advancing all their
+    episodes. Each value is the one ``fitness`` gives where the vector form seeds each lane
+    (gpfd's own environments, SyncVectorEnv)."""
     if isinstance(features, (FeatureSet, str, os.PathLike)):
         raise TypeError("fitness_of_each takes a list of feature sets; fitness takes one")
     overrides, evaluator = _env_overrides(env, env_kwargs)
@@ -249,7 +250,7 @@ def fitness_of_each(
         config = user_env.DEFAULT_CONFIG
     sets = [_feature_set(f, f"features[{i}]") for i, f in enumerate(features)]
     return _core.fitness_of_each(
-        "" if config is None else os.fspath(config), overrides, sets, int(seed)
+        "" if config is None else os.fspath(config), overrides, sets, _whole("seed", seed, 0)
     )
 
 

@@ -258,7 +258,11 @@ class Evaluator:
         (python/src/lockstep_group.hpp)."""
         from gpfd.vector_source import VectorSource
 
-        return isinstance(self.factory, VectorSource) and self.factory.has_vector()
+        return (
+            _core.LOCKSTEP_FIBERS
+            and isinstance(self.factory, VectorSource)
+            and self.factory.has_vector()
+        )
 
     def run_trials(
         self, config_text: str, budget: int, tasks: list[tuple[tuple, list[int]]]

@@ -9,14 +9,15 @@ An environment stepped in Python (gpfd.user_env) has a vector form when it comes
 - ``VectorFactory(make_vec)``, where ``make_vec(num_envs)`` returns a Gymnasium ``VectorEnv``.
 
 Policy gradient's lockstep player (src/rl/lockstep_episodes.cpp) then plays the episodes of each
-call in the lanes of one vector environment (python/src/python_vector_environment.cpp, driven by
-VectorAdapter here): one ``step`` for all lanes per time step. The episodes of a call all start
+call in the lanes of one vector environment (python/src/vector_hub.cpp, driving VectorAdapter
+here), shared by the players of a lockstep group (python/src/lockstep_group.hpp): one ``step``
+for all their lanes per time step. The episodes of a call all start
 with one ``reset``, each lane seeded from its episode's own stream where the vector environment
 takes one seed per sub-environment (gpfd's ``GpfdVectorEnv``, ``SyncVectorEnv``,
 ``AsyncVectorEnv``, or ``VectorFactory(..., per_lane_seeds=True)``): lane l then gets the seed
 that the per-environment path gives ``reset(seed=...)``, and plays the same episode. Otherwise the
 vector environment gets one seed mixed from all lanes' seeds (EnvPool, whose seeds are fixed when
-it is made: at its creation, once per fitness evaluation): the same seeds give the same episodes,
+it is made: at its creation, once per lockstep group): the same seeds give the same episodes,
 but not those of the per-environment path. Any autoreset mode works
 (gymnasium.vector.AutoresetMode): an episode is booked up to the step that ends it and its lane
 retired, before any autoreset.
@@ -121,8 +122,9 @@ class GymnasiumSource(VectorSource):
 class EnvPoolSource(VectorSource):
     """An EnvPool task: ``envpool.make_gymnasium(task, num_envs=N, batch_size=N, seed=s,
     num_threads=1, **kwargs)``, synchronous; a single environment is a pool of one, made anew at
-    each seeded reset. A pool is made once per batched form (one fitness evaluation's trials),
-    seeded from the first call's lanes, and its streams go on from reset to reset."""
+    each seeded reset. A pool is made once per lockstep group (again, larger, where a reset needs
+    more sub-environments), seeded from the first call's lanes, and its streams go on from reset
+    to reset."""
 
     seeded_at_creation = True
     elapsed_key = "elapsed_step"
@@ -286,7 +288,7 @@ def native_single(name: str, adapter: Any) -> tuple[Any, bool] | None:
 # making one costs more than a short fitness evaluation's resets. Reused only where every reset
 # reseeds what the lanes play (not EnvPool, seeded at creation), so that reuse changes nothing.
 _idle: dict[tuple[str, VectorSource, int], list[VectorEnv]] = {}
-_IDLE_MAX = 4  # Per key: the lockstep players alive at once in one process.
+_IDLE_MAX = 4  # Per key: the vector environments (lockstep groups) alive at once in a process.
 
 
 def _mixed_seed(seeds: Sequence[int]) -> int:
@@ -296,7 +298,7 @@ def _mixed_seed(seeds: Sequence[int]) -> int:
 
 
 class VectorAdapter:
-    """One vector environment driven by gpfd's lockstep player (python_vector_environment.cpp):
+    """One vector environment driven by a lockstep group's players (python/src/vector_hub.cpp):
     made on the first reset with as many sub-environments as lanes (again, larger, when a reset
     needs more), seeded, checked, and every failure raised as gpfd.EnvError naming the
     environment, the call, the step and the lane."""
@@ -430,24 +432,28 @@ class VectorAdapter:
         return array
 
     def final_observations(
-        self, info: dict, step: int, rows: int | None = None
+        self, info: dict, step: int, sub_envs: Sequence[int] | None = None
     ) -> tuple[np.ndarray, np.ndarray]:
         """(mask, observations) of info["_final_obs"] and info["final_obs"] (same-step
-        autoreset), observations float64 (N, d) with rows where the mask is set."""
+        autoreset), observations float64 (N, d) with rows where the mask is set; row i is
+        sub-environment sub_envs[i] where a step of a subset returned them."""
+        rows = None if sub_envs is None else len(sub_envs)
         mask = self.as_array(info["_final_obs"], "info['_final_obs']", step, rows)
         obs = np.zeros((len(mask), self.state_dim))
+        names = range(len(mask)) if sub_envs is None else sub_envs
         final = info.get("final_obs")
         for i in np.flatnonzero(mask):
             try:
                 row = np.asarray(final[i], dtype=np.float64).reshape(-1)  # type: ignore[index]
             except (TypeError, ValueError, IndexError) as e:
                 raise self._error(
-                    f"info['final_obs'] of lane {i} after vector step {step} is not an "
+                    f"info['final_obs'] of lane {names[i]} after vector step {step} is not an "
                     f"observation: {e}"
                 ) from e
             if row.size != self.state_dim:
                 raise self._error(
-                    f"its vector form lies about its spaces: info['final_obs'] of lane {i} after "
+                    f"its vector form lies about its spaces: info['final_obs'] of lane {names[i]} "
+                    f"after "
                     f"vector step {step} has {row.size} values, its single_observation_space "
                     f"{self.state_dim}"
                 )

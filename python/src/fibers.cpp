@@ -22,7 +22,10 @@ class Stack {
     base_ = mmap(nullptr, kStackBytes + page_, PROT_READ | PROT_WRITE,
                  MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
     if (base_ == MAP_FAILED) throw std::bad_alloc();
-    mprotect(base_, page_, PROT_NONE);  // The guard page.
+    if (mprotect(base_, page_, PROT_NONE) != 0) {  // The guard page.
+      munmap(base_, kStackBytes + page_);
+      throw std::bad_alloc();
+    }
   }
   ~Stack() { munmap(base_, kStackBytes + page_); }
   Stack(const Stack&) = delete;

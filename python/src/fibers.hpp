@@ -1,7 +1,8 @@
 // python: cooperative fibers on the calling thread (POSIX ucontext): the members of a lockstep
 // group (lockstep_group.hpp) each play on a stack of their own and hand over only where they wait
 // for a round of the shared vector environment, so that one thread plays them all, in a fixed
-// order, without locks or the cost of waking a thread per member at every step.
+// order, without locks or the scheduler's wake-ups of a thread per member at every step (a switch
+// is a swapcontext: a system call for the signal mask, a few microseconds).
 #pragma once
 
 #include <cstddef>

@@ -1,8 +1,6 @@
 // python: lockstep groups (lockstep_group.hpp).
 #include "lockstep_group.hpp"
 
-#include <Python.h>
-
 #include <exception>
 #include <stdexcept>
 
@@ -39,13 +37,10 @@ LockstepGroup* LockstepGroup::current() { return Fibers::inFiber() ? currentGrou
 std::size_t LockstepGroup::currentMember() { return Fibers::current(); }
 
 void playInGroup(std::size_t n, const std::function<void(std::size_t)>& job) {
-#if PY_VERSION_HEX >= 0x030E0000
-  // CPython 3.14 checks the machine stack against its thread's bounds, outside which a fiber's
-  // stack lies (its RecursionError "stack overflow"): there the jobs play one after another, each
-  // in a vector environment of its own, as gpfd.fitness plays one.
-  for (std::size_t i = 0; i < n; ++i) job(i);
-  return;
-#endif
+  if (!kLockstepFibers) {
+    for (std::size_t i = 0; i < n; ++i) job(i);
+    return;
+  }
   LockstepGroup group(n);
   struct Scope {
     explicit Scope(LockstepGroup* g) { currentGroup = g; }

@@ -11,9 +11,19 @@
 #include <string>
 #include <vector>
 
-#include "vector_hub.hpp"
+#include "vector_hub.hpp"  // Python.h: PY_VERSION_HEX.
 
 namespace gpfd::python {
+
+// Whether lockstep groups play their members as fibers: not on CPython 3.14 and later, which checks
+// the machine stack against its thread's bounds, outside which a fiber's stack lies (a
+// RecursionError "stack overflow"); there a group's jobs play one after another, each in a vector
+// environment of its own, as gpfd.fitness plays one.
+#if PY_VERSION_HEX >= 0x030E0000
+inline constexpr bool kLockstepFibers = false;
+#else
+inline constexpr bool kLockstepFibers = true;
+#endif
 
 class LockstepGroup {
  public:

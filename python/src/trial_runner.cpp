@@ -225,6 +225,7 @@ void bindTrialRunner(nb::module_& m) {
         nb::arg("seeds"),
         "Learning runs of one feature set, run k seeded Rng(seeds[k]) (the worker processes' "
         "task for validation, confirmation and assessment); their curves as plain values.");
+  m.attr("LOCKSTEP_FIBERS") = kLockstepFibers;  // Lockstep groups play as fibers (this Python).
   m.def("train_runs_group", &trainRunsGroup, nb::arg("config_text"), nb::arg("budget"),
         nb::arg("tasks"),
         "train_runs of each (features, seeds), played in one lockstep group: the runs' episodes "

@@ -1,7 +1,7 @@
 // python: batches of learning trials (validation, confirmation, assessment) on the worker
 // processes of an environment stepped in Python (gpfd.user_env.Evaluator), and what the workers
-// run. A curve depends only on its features, budget and seed, so they are the curves that
-// run::ThreadTrialRunner gives.
+// run. A curve depends only on its features, budget and seed (and, on a vector form seeded as a
+// whole, its lockstep group), so they are the curves that run::ThreadTrialRunner gives.
 #pragma once
 
 #include <memory>

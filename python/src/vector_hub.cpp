@@ -217,8 +217,8 @@ void VectorHub::stepMembers(const std::vector<std::size_t>& stepping) {
   out.truncated = read(PyTuple_GET_ITEM(result.ptr(), 3), "truncated", 1);
   // Same-step autoreset: the observation that ended an episode is in info["final_obs"].
   if (hasItem(info, "_final_obs")) {
-    finals_ =
-        nb::cast<nb::tuple>(adapter_.attr("final_observations")(info, steps_, stepped_.size()));
+    finals_ = nb::cast<nb::tuple>(adapter_.attr("final_observations")(
+        info, steps_, subsets_ ? nb::cast(stepped_) : nb::none()));
     out.finalMask = read(finals_[0], "info['_final_obs']", 1);
     out.finalObs = read(finals_[1], "info['final_obs']", 2, stateDim_);
     out.withFinal = true;

@@ -9,7 +9,8 @@
 // reset, one reset of the whole vector environment. So the members play their batches of episodes
 // together and start the next batches together, and which calls make up a round follows from what
 // the members ask: the same members give the same rounds. A member's sub-environments step along
-// with the others while it waits for a reset; what they return is not read.
+// with the others while it waits for a reset (unless the vector form steps subsets, EnvPool); what
+// they return is not read.
 #pragma once
 
 #include <cstdint>
@@ -32,8 +33,7 @@ namespace gpfd::python {
 // cause).
 class LockstepGroupFailed : public std::runtime_error {
  public:
-  LockstepGroupFailed()
-      : std::runtime_error("another fitness evaluation of its lockstep group failed") {}
+  LockstepGroupFailed() : std::runtime_error("another member of its lockstep group failed") {}
 };
 
 class VectorHub {

@@ -1,7 +1,9 @@
 // run: where batches of learning trials run (validation, confirmation, re-measurement,
 // assessment). A trial's curve is a pure function of its features, its budget and its seed, so
 // every runner gives the same curves: the default trains them on threads of this process; the
-// Python package hands them to its worker processes (an environment stepped in Python).
+// Python package hands them to its worker processes (an environment stepped in Python; on a
+// vector form seeded as a whole, also of the fixed lockstep group it plays in,
+// python/src/lockstep_group.hpp).
 #pragma once
 
 #include <cstdint>
