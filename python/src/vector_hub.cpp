@@ -43,6 +43,7 @@ VectorHub::~VectorHub() {
   keep_.clear();
   finals_.reset();
   step_.reset();
+  stepSubset_.reset();
   actions_.reset();
   adapter_.reset();
 }
@@ -148,6 +149,8 @@ void VectorHub::resetMembers(const std::vector<std::size_t>& resetting) {
   disabled_ = nb::cast<bool>(adapter_.attr("resets_ended"));
   elapsedKey_ = nb::cast<std::string>(adapter_.attr("elapsed_key"));
   subsets_ = nb::cast<bool>(adapter_.attr("steps_subsets"));
+  stepSubset_ = subsets_ ? adapter_.attr("step_subset") : nb::object();
+  elapsedWhat_ = "info['" + elapsedKey_ + "']";
   stepped_.resize(lanes_);
   std::iota(stepped_.begin(), stepped_.end(), std::size_t{0});
   rowOf_ = stepped_;
@@ -200,7 +203,7 @@ void VectorHub::stepMembers(const std::vector<std::size_t>& stepping) {
   }
   nb::object result;
   try {
-    result = subsets_ ? adapter_.attr("step_subset")(nb::cast(stepped_)) : step_(actions_);
+    result = subsets_ ? stepSubset_(nb::cast(stepped_)) : step_(actions_);
   } catch (nb::python_error& e) {
     adapter_.attr("step_raised")(e.value(), steps_, activeSubEnvironments(stepping));
     throw std::logic_error("VectorAdapter.step_raised must raise");
@@ -224,8 +227,8 @@ void VectorHub::stepMembers(const std::vector<std::size_t>& stepping) {
     out.withFinal = true;
   }
   if (!elapsedKey_.empty() && hasItem(info, elapsedKey_.c_str())) {
-    out.elapsed = read(nb::handle(PyDict_GetItemString(info.ptr(), elapsedKey_.c_str())),
-                       "info['" + elapsedKey_ + "']", 1);
+    out.elapsed =
+        read(nb::handle(PyDict_GetItemString(info.ptr(), elapsedKey_.c_str())), elapsedWhat_, 1);
     out.withElapsed = true;
   }
   for (std::size_t m : stepping) book(members_[m], out);

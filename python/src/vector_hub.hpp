@@ -120,6 +120,8 @@ class VectorHub {
   bool disabled_ = false;      // Autoreset disabled: ended sub-environments need a reset.
   std::string elapsedKey_;     // The key of info that counts the steps of each episode, if any.
   nb::object step_, actions_;  // The vector environment's step and the action array it receives.
+  nb::object stepSubset_;      // The adapter's step_subset, where it steps subsets.
+  std::string elapsedWhat_;    // info['<elapsedKey_>'], for errors.
   void* actionData_ = nullptr;
   enum class ActionKind { I64, F64, F32 };
   ActionKind actionKind_ = ActionKind::F64;
