@@ -5,11 +5,23 @@
 //   v' = clip(v + power * a - 0.0025 cos(3 x), -0.07, 0.07)
 //   x' = clip(x + v', -1.2, 0.5); at the left wall (x' = -1.2) the car stops: v' = 0
 //
-// a in [-1, 1] (Sutton & Barto's three actions are a in {-1, 0, 1}, power 0.001). Reward -1 per
-// step; terminal at x' >= 0.5; start x ~ U(-0.6, -0.4), v = 0; a time limit in steps.
+// a in [-1, 1] (Sutton & Barto's three actions are a in {-1, 0, 1}, power 0.001; Gymnasium's
+// MountainCar-v0 has the same constants). Reward -1 per step (both); terminal at x' >= 0.5; a
+// time limit in steps, 200 by default (MountainCar-v0's TimeLimit). Two start distributions
+// (parameter `start`):
+//   valley:   x ~ U(-0.6, -0.4), v = 0, as Sutton & Barto and MountainCar-v0;
+//   anywhere: x ~ U(-1.2, 0.5), v ~ U(-0.07, 0.07), uniform over the state space: exploring starts
+//             (Sutton & Barto, section 5.3), the default.
+// From the valley, a policy whose exploration is independent noise on each step's throttle does
+// not reach the goal in 200 steps, so every return is -200 and policy gradient has nothing to
+// follow (README.md: 20 trainings of 100 updates of 50 episodes, all -200 throughout). Started
+// anywhere, some episodes reach the goal at once, and the learner improves from there.
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "gpfd/env/environment.hpp"
 #include "gpfd/run/plugin.hpp"
@@ -19,11 +31,14 @@ namespace {
 
 using namespace gpfd;
 
-constexpr double kMinX = -1.2, kMaxX = 0.5, kMaxSpeed = 0.07, kGravity = 0.0025;
+constexpr double kMinX = -1.2, kMaxX = 0.5, kGoalX = 0.5, kMaxSpeed = 0.07, kGravity = 0.0025;
+
+enum class Start { Valley, Anywhere };
 
 struct MountainCarConfig {
   double power = 0.001;  // Acceleration per unit of throttle (Sutton & Barto; Gymnasium: 0.0015).
-  int maxSteps = 1000;   // Time limit in steps (truncation); 0 = none.
+  int maxSteps = 200;    // Time limit in steps (truncation); 0 = none. Gymnasium: 200.
+  Start start = Start::Anywhere;
 
   static const ParamTable<MountainCarConfig>& table() {
     static const auto table =
@@ -33,7 +48,13 @@ struct MountainCarConfig {
                 "acceleration per unit of throttle (Sutton & Barto: 0.001; Gymnasium: 0.0015)")
             .integer(
                 "max_steps", [](auto& c) -> auto& { return c.maxSteps; }, 0, 1000000000,
-                "time limit in steps (truncation); 0 = none");
+                "time limit in steps (truncation; Gymnasium's MountainCar-v0: 200); 0 = none")
+            .choice(
+                "start", [](auto& c) -> auto& { return c.start; },
+                std::vector<std::pair<std::string, Start>>{{"valley", Start::Valley},
+                                                           {"anywhere", Start::Anywhere}},
+                "valley: x ~ U(-0.6, -0.4), v = 0 (Sutton & Barto); anywhere: uniform over the "
+                "state space (exploring starts)");
     return table;
   }
 };
@@ -65,7 +86,13 @@ class MountainCar final : public env::Environment {
     return space;
   }
   void reset(Rng& rng) override {
-    state_ = {rng.uniform(-0.6, -0.4), 0.0};
+    if (config_.start == Start::Valley) {
+      state_ = {rng.uniform(-0.6, -0.4), 0.0};
+    } else {
+      // Below the goal: lo + (hi - lo) * u can round up to hi.
+      const double x = std::min(rng.uniform(kMinX, kGoalX), std::nextafter(kGoalX, kMinX));
+      state_ = {x, rng.uniform(-kMaxSpeed, kMaxSpeed)};
+    }
     steps_ = 0;
   }
   std::span<const double> state() const override { return state_; }
@@ -90,7 +117,7 @@ class MountainCar final : public env::Environment {
     state_ = {x, v};
     ++steps_;
     env::StepResult result;
-    result.terminated = x >= kMaxX;
+    result.terminated = x >= kGoalX;
     result.reward = -1.0;
     result.truncated = config_.maxSteps > 0 && steps_ >= config_.maxSteps;
     return result;

@@ -440,20 +440,20 @@ class VectorAdapter:
         rows = None if sub_envs is None else len(sub_envs)
         mask = self.as_array(info["_final_obs"], "info['_final_obs']", step, rows)
         obs = np.zeros((len(mask), self.state_dim))
-        names = range(len(mask)) if sub_envs is None else sub_envs
+        names: Sequence[int] = range(len(mask)) if sub_envs is None else sub_envs
         final = info.get("final_obs")
         for i in np.flatnonzero(mask):
             try:
                 row = np.asarray(final[i], dtype=np.float64).reshape(-1)  # type: ignore[index]
             except (TypeError, ValueError, IndexError) as e:
                 raise self._error(
-                    f"info['final_obs'] of lane {names[i]} after vector step {step} is not an "
+                    f"info['final_obs'] of lane {names[int(i)]} after vector step {step} is not an "
                     f"observation: {e}"
                 ) from e
             if row.size != self.state_dim:
                 raise self._error(
-                    f"its vector form lies about its spaces: info['final_obs'] of lane {names[i]} "
-                    f"after "
+                    f"its vector form lies about its spaces: info['final_obs'] of lane "
+                    f"{names[int(i)]} after "
                     f"vector step {step} has {row.size} values, its single_observation_space "
                     f"{self.state_dim}"
                 )
