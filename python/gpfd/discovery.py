@@ -216,16 +216,8 @@ def fitness(
     """GP's fitness of a feature set: the mean score of the config's short learning trials, as
     one evaluation in ``gpfd evolve`` computes it (run::trialFitness with ``Rng(seed)``). An
     environment stepped in Python runs in this process (default config ``user-env``)."""
-    overrides, evaluator = _env_overrides(env, env_kwargs)
-    overrides += _overrides(set)
-    if evaluator is not None and config is None:
-        config = user_env.DEFAULT_CONFIG
-    return _core.fitness(
-        "" if config is None else os.fspath(config),
-        overrides,
-        _feature_set(features, "features"),
-        _whole("seed", seed, 0),
-    )
+    sets = [_feature_set(features, "features")]
+    return _fitness_of_each(sets, config, env, seed, set, env_kwargs)[0]
 
 
 def fitness_of_each(
@@ -244,11 +236,22 @@ def fitness_of_each(
     (gpfd's own environments, SyncVectorEnv)."""
     if isinstance(features, (FeatureSet, str, os.PathLike)):
         raise TypeError("fitness_of_each takes a list of feature sets; fitness takes one")
+    sets = [_feature_set(f, f"features[{i}]") for i, f in enumerate(features)]
+    return _fitness_of_each(sets, config, env, seed, set, env_kwargs)
+
+
+def _fitness_of_each(
+    sets: list[FeatureSet],
+    config: str | os.PathLike | None,
+    env: str | Callable[..., Any] | None,
+    seed: int,
+    settings: Mapping[str, Any] | Iterable[str] | None,
+    env_kwargs: dict[str, Any] | None,
+) -> list[float]:
     overrides, evaluator = _env_overrides(env, env_kwargs)
-    overrides += _overrides(set)
+    overrides += _overrides(settings)
     if evaluator is not None and config is None:
         config = user_env.DEFAULT_CONFIG
-    sets = [_feature_set(f, f"features[{i}]") for i, f in enumerate(features)]
     return _core.fitness_of_each(
         "" if config is None else os.fspath(config), overrides, sets, _whole("seed", seed, 0)
     )

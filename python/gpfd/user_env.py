@@ -193,16 +193,8 @@ def _init_worker(name: str, payload: bytes) -> None:
     register(name, cloudpickle.loads(payload))
 
 
-def _fitness_task(task: tuple[str, bytes, int]) -> float:
-    return _core.trial_fitness(*task)
-
-
 def _fitness_group_task(task: tuple[str, list[tuple[bytes, int]]]) -> list[float]:
     return _core.trial_fitness_group(*task)
-
-
-def _runs_task(task: tuple[str, int, tuple, list[int]]) -> list:
-    return _core.train_runs(*task)
 
 
 def _runs_group_task(task: tuple[str, int, list[tuple[tuple, list[int]]]]) -> list[list]:
@@ -245,24 +237,21 @@ class Evaluator:
         self._pool: Pool | None = None
 
     def __call__(self, config_text: str, tasks: list[tuple[bytes, int]]) -> list[float]:
-        if self.lockstep:
-            groups = [(config_text, group) for group in _lockstep_groups(tasks)]
-            return [fitness for done in self._map(_fitness_group_task, groups) for fitness in done]
-        work = [(config_text, genome, seed) for genome, seed in tasks]
-        return list(self._map(_fitness_task, work))
+        groups = [(config_text, group) for group in self._groups(tasks)]
+        return [fitness for done in self._map(_fitness_group_task, groups) for fitness in done]
 
     @property
     def lockstep(self) -> bool:
         """Whether the environment has a vector form, whose calls go in lockstep groups
         (_lockstep_groups), each group's episodes in one vector environment
         (python/src/lockstep_group.hpp)."""
-        from gpfd.vector_source import VectorSource
+        from gpfd.vector_source import has_vector_form
 
-        return (
-            _core.LOCKSTEP_FIBERS
-            and isinstance(self.factory, VectorSource)
-            and self.factory.has_vector()
-        )
+        return _core.LOCKSTEP_FIBERS and has_vector_form(self.name)
+
+    def _groups(self, tasks: list) -> list[list]:
+        """Lockstep groups where the environment has a vector form, else one task each."""
+        return _lockstep_groups(tasks) if self.lockstep else [[task] for task in tasks]
 
     def run_trials(
         self, config_text: str, budget: int, tasks: list[tuple[tuple, list[int]]]
@@ -270,11 +259,8 @@ class Evaluator:
         """The curves of each task (a feature set and the seeds of its runs) under the config
         and budget (run::LearningTask::Budget), in task order, as each is done
         (python/src/trial_runner.cpp)."""
-        if self.lockstep:
-            groups = [(config_text, budget, group) for group in _lockstep_groups(tasks)]
-            return (curves for done in self._map(_runs_group_task, groups) for curves in done)
-        work = [(config_text, budget, features, seeds) for features, seeds in tasks]
-        return self._map(_runs_task, work)
+        groups = [(config_text, budget, group) for group in self._groups(tasks)]
+        return (curves for done in self._map(_runs_group_task, groups) for curves in done)
 
     def _map(self, function: Callable[[Any], Any], work: list) -> Iterator:
         """function over work, in order, as each is done: here, or on the workers."""

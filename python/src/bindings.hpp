@@ -55,7 +55,7 @@ void bindEnvironments(nb::module_& m);
 void bindEnvironmentState(nb::module_& m);
 void bindPythonEnvironments(nb::module_& m);
 void bindDiscovery(nb::module_& m);
-// _core.train_runs: the worker processes' learning runs (trial_runner.cpp).
+// _core.train_runs_group: the worker processes' learning runs (trial_runner.cpp).
 void bindTrialRunner(nb::module_& m);
 
 }  // namespace gpfd::python

@@ -270,17 +270,8 @@ nb::tuple evolve(const std::string& config, const std::vector<std::string>& over
   return nb::make_tuple(result.dir, result.finished);
 }
 
-double trialFitness(const std::string& configText, const nb::bytes& genome, std::uint64_t seed) {
-  const run::LearningTask& task = cachedTask(configText, run::LearningTask::Budget::Trial);
-  const expr::Genome g = unpackGenome(std::string_view(genome.c_str(), genome.size()),
-                                      static_cast<int>(task.stateDim()));
-  nb::gil_scoped_release release;
-  Rng rng(seed);
-  return run::trialFitness(task, g, rng);
-}
-
-// The fitness of each genome, all in one lockstep group (lockstep_group.hpp): what trialFitness
-// gives each, where the vector form seeds each lane.
+// run::trialFitness of each packed genome with Rng(seed), all in one lockstep group
+// (lockstep_group.hpp): the worker processes' task (a group of one where there is no vector form).
 std::vector<double> trialFitnessGroupOf(
     const std::string& configText, const std::vector<std::pair<nb::bytes, std::uint64_t>>& tasks) {
   const run::LearningTask& task = cachedTask(configText, run::LearningTask::Budget::Trial);
@@ -302,13 +293,6 @@ std::vector<double> trialFitnessGroupOf(
 
 service::FeatureSource sourceOf(const FeatureSet& set) {
   return {.name = set.name(), .path = {}, .file = set.file()};
-}
-
-double fitness(const std::string& config, const std::vector<std::string>& overrides,
-               const FeatureSet& set, std::uint64_t seed) {
-  const auto source = sourceOf(set);
-  nb::gil_scoped_release release;
-  return service::trialFitness(config, overrides, source, seed);
 }
 
 std::vector<double> fitnessOfEach(const std::string& config,
@@ -386,16 +370,12 @@ void bindDiscovery(nb::module_& m) {
         nb::arg("verbose"), nb::arg("observer").none() = nb::none(), nb::arg("out_name") = "",
         "Runs (or resumes) discovery through the service layer, like `gpfd evolve`; returns "
         "(results dir, finished).");
-  m.def("trial_fitness", &trialFitness, nb::arg("config_text"), nb::arg("genome"), nb::arg("seed"),
-        "run::trialFitness of a packed genome (the worker processes' task).");
   m.def("trial_fitness_group", &trialFitnessGroupOf, nb::arg("config_text"), nb::arg("tasks"),
-        "trial_fitness of each (packed genome, seed), played in one lockstep group: the "
-        "evaluations' episodes share one vector environment.");
+        "run::trialFitness of each (packed genome, seed), played in one lockstep group: the "
+        "evaluations' episodes share one vector environment (the worker processes' task).");
   m.def("fitness_of_each", &fitnessOfEach, nb::arg("config"), nb::arg("overrides"),
         nb::arg("features"), nb::arg("seed"),
         "GP's fitness of each feature set under a config, the same seed, in one lockstep group.");
-  m.def("fitness", &fitness, nb::arg("config"), nb::arg("overrides"), nb::arg("features"),
-        nb::arg("seed"), "GP's fitness of a feature set under a config.");
   m.def(
       "resolved_config",
       [](const std::string& config, const std::vector<std::string>& overrides) {

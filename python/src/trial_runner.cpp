@@ -158,19 +158,9 @@ nb::list curvesToPython(const std::vector<rl::LearningCurve>& curves) {
   return out;
 }
 
-nb::list trainRuns(const std::string& configText, int budget, const nb::tuple& features,
-                   const std::vector<std::uint64_t>& seeds) {
-  const run::LearningTask& task = taskOf(configText, budget);
-  const run::TrialFeatures set = featuresFromPython(features, static_cast<int>(task.stateDim()));
-  std::vector<rl::LearningCurve> curves;
-  {
-    nb::gil_scoped_release release;
-    curves = trainSet(task, set, seeds);
-  }
-  return curvesToPython(curves);
-}
-
-// train_runs of each (features, seeds), played in one lockstep group (lockstep_group.hpp).
+// The learning runs of each (features, seeds), run k of a task seeded Rng(seeds[k]), played in one
+// lockstep group (lockstep_group.hpp): the worker processes' task for validation, confirmation and
+// assessment (a group of one where there is no vector form); their curves as plain values.
 nb::list trainRunsGroup(const std::string& configText, int budget, const nb::list& tasks) {
   const run::LearningTask& task = taskOf(configText, budget);
   std::vector<run::TrialFeatures> sets;
@@ -221,15 +211,11 @@ void forgetCachedTasks() {
 }
 
 void bindTrialRunner(nb::module_& m) {
-  m.def("train_runs", &trainRuns, nb::arg("config_text"), nb::arg("budget"), nb::arg("features"),
-        nb::arg("seeds"),
-        "Learning runs of one feature set, run k seeded Rng(seeds[k]) (the worker processes' "
-        "task for validation, confirmation and assessment); their curves as plain values.");
   m.attr("LOCKSTEP_FIBERS") = kLockstepFibers;  // Lockstep groups play as fibers (this Python).
   m.def("train_runs_group", &trainRunsGroup, nb::arg("config_text"), nb::arg("budget"),
         nb::arg("tasks"),
-        "train_runs of each (features, seeds), played in one lockstep group: the runs' episodes "
-        "share one vector environment.");
+        "The learning runs of each (features, seeds), played in one lockstep group: the runs' "
+        "episodes share one vector environment (the worker processes' task); their curves.");
 }
 
 }  // namespace gpfd::python

@@ -86,22 +86,25 @@ void VectorHub::await(std::size_t m, Wants wants, const env::BatchBuffers& io) {
 }
 
 bool VectorHub::runRound() {
-  std::vector<std::size_t> stepping, resetting;
+  // The members that ask for a step; where none does, all (each asks for a reset).
+  const bool steps = std::any_of(members_.begin(), members_.end(), [](const Member& member) {
+    return member.playing && member.wants == Wants::Step;
+  });
+  due_.clear();
   for (std::size_t m = 0; m < members_.size(); ++m) {
-    if (!members_[m].playing) continue;
-    (members_[m].wants == Wants::Step ? stepping : resetting).push_back(m);
+    if (members_[m].playing && (!steps || members_[m].wants == Wants::Step)) due_.push_back(m);
   }
   try {
-    if (stepping.empty()) {
-      resetMembers(resetting);
+    if (steps) {
+      stepMembers(due_);
     } else {
-      stepMembers(stepping);
+      resetMembers(due_);
     }
   } catch (...) {
     failure_ = std::current_exception();
   }
-  for (std::size_t m : stepping.empty() ? resetting : stepping) members_[m].wants = Wants::Nothing;
-  waiting_ -= stepping.empty() ? resetting.size() : stepping.size();
+  for (std::size_t m : due_) members_[m].wants = Wants::Nothing;
+  waiting_ -= due_.size();
   if (failure_) {
     for (Member& member : members_) member.wants = Wants::Nothing;
     waiting_ = 0;

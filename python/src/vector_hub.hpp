@@ -110,8 +110,9 @@ class VectorHub {
 
   // The rounds.
   std::vector<Member> members_;
-  std::size_t playing_ = 0;  // Members that have not left.
-  std::size_t waiting_ = 0;  // Members whose call waits for its round.
+  std::size_t playing_ = 0;       // Members that have not left.
+  std::size_t waiting_ = 0;       // Members whose call waits for its round.
+  std::vector<std::size_t> due_;  // The members the running round serves.
   std::exception_ptr failure_;
 
   // The vector environment, as the adapter has it (read at each reset).

@@ -25,11 +25,6 @@ expr::FeaturesFile featuresFor(const FeatureSource& source, const run::LearningT
   return file;
 }
 
-double trialFitness(const std::string& config, const std::vector<std::string>& overrides,
-                    const FeatureSource& source, std::uint64_t seed) {
-  return trialFitnesses(config, overrides, {source}, seed).front();
-}
-
 std::vector<double> trialFitnesses(const std::string& config,
                                    const std::vector<std::string>& overrides,
                                    const std::vector<FeatureSource>& sources, std::uint64_t seed,

@@ -101,7 +101,7 @@ def recorded_tasks(env, monkeypatch, tmp_path, **kwargs) -> tuple[str, list[tupl
 def test_a_group_gives_each_genome_its_fitness_alone(env, monkeypatch, tmp_path):
     config_text, tasks = recorded_tasks(env, monkeypatch, tmp_path)
     assert len(tasks) >= 4
-    alone = [_core.trial_fitness(config_text, genome, seed) for genome, seed in tasks]
+    alone = [_core.trial_fitness_group(config_text, [task])[0] for task in tasks]
     assert all(np.isfinite(alone))
     assert _core.trial_fitness_group(config_text, tasks) == alone
     # Any split into groups, the members in another order too.

@@ -23,15 +23,11 @@ struct FeatureSource {
 // names one) and read the task's state variables. InputError naming the source otherwise.
 expr::FeaturesFile featuresFor(const FeatureSource& source, const run::LearningTask& task);
 
-// GP's fitness of a feature set: the mean score of the config's short learning trials, as one
-// evaluation of `gpfd evolve` computes it (run::trialFitness with Rng(seed)).
-double trialFitness(const std::string& config, const std::vector<std::string>& overrides,
-                    const FeatureSource& source, std::uint64_t seed);
-
 // How evaluations run: play(n, job) calls job(i) once for each i < n, in any order or at once.
 using PlayJobs = std::function<void(std::size_t n, const std::function<void(std::size_t)>& job)>;
-// trialFitness of each source with the same seed, the evaluations run by `play` (empty: one after
-// another); Python plays them in one lockstep group.
+// GP's fitness of each source with the same seed: the mean score of the config's short learning
+// trials, as one evaluation of `gpfd evolve` computes it (run::trialFitness with Rng(seed)); the
+// evaluations run by `play` (empty: one after another; Python plays them in one lockstep group).
 std::vector<double> trialFitnesses(const std::string& config,
                                    const std::vector<std::string>& overrides,
                                    const std::vector<FeatureSource>& sources, std::uint64_t seed,
