@@ -16,7 +16,7 @@ find_package(nanobind CONFIG REQUIRED)
 
 file(GLOB GPFD_PYTHON_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/python/src/*.cpp)
 nanobind_add_module(_core NOMINSIZE NB_SUPPRESS_WARNINGS ${GPFD_PYTHON_SOURCES})
-target_link_libraries(_core PRIVATE gpfd::core gpfd_version)
+target_link_libraries(_core PRIVATE gpfd::core gpfd::fibers gpfd_version)
 target_compile_options(_core PRIVATE ${GPFD_WARNINGS})
 if(GPFD_JIT_AVAILABLE)
   # Debian's libasmjit.a is not built for shared objects: its symbols stay inside the module, and

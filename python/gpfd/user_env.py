@@ -247,7 +247,7 @@ class Evaluator:
         (python/src/lockstep_group.hpp)."""
         from gpfd.vector_source import has_vector_form
 
-        return _core.LOCKSTEP_FIBERS and has_vector_form(self.name)
+        return has_vector_form(self.name)
 
     def _groups(self, tasks: list) -> list[list]:
         """Lockstep groups where the environment has a vector form, else one task each."""

@@ -4,7 +4,7 @@
 #include <exception>
 #include <stdexcept>
 
-#include "fibers.hpp"
+#include "gpfd/fibers/scheduler.hpp"
 
 namespace gpfd::python {
 namespace {
@@ -32,21 +32,17 @@ void LockstepGroup::leave(std::size_t m) {
   if (hub_ != nullptr) hub_->leave(m);
 }
 
-LockstepGroup* LockstepGroup::current() { return Fibers::inFiber() ? currentGroup : nullptr; }
+LockstepGroup* LockstepGroup::current() { return fibers::Scheduler::inFiber() ? currentGroup : nullptr; }
 
-std::size_t LockstepGroup::currentMember() { return Fibers::current(); }
+std::size_t LockstepGroup::currentMember() { return fibers::Scheduler::current(); }
 
 void playInGroup(std::size_t n, const std::function<void(std::size_t)>& job) {
-  if (!kLockstepFibers) {
-    for (std::size_t i = 0; i < n; ++i) job(i);
-    return;
-  }
   LockstepGroup group(n);
   struct Scope {
     explicit Scope(LockstepGroup* g) { currentGroup = g; }
     ~Scope() { currentGroup = nullptr; }
   } scope(&group);
-  const std::vector<std::exception_ptr> errors = Fibers::run(n, [&](std::size_t i) {
+  const std::vector<std::exception_ptr> errors = fibers::Scheduler::run(n, [&](std::size_t i) {
     std::exception_ptr error;
     try {
       job(i);

@@ -1,8 +1,10 @@
 // python: a lockstep group: the fitness evaluations (or learning runs) of several feature sets
-// played as fibers of one thread (fibers.hpp), whose lockstep players share one vector
-// environment (vector_hub.hpp), so that one vector step advances the episodes of all of them. On
-// gpfd.vector_source's vector forms stepped in Python, where a step costs mostly per call
-// (NumPy, EnvPool), this is what spreads that cost over hundreds of lanes.
+// played as fibers of one thread (gpfd/fibers/scheduler.hpp), whose lockstep players share one
+// vector environment (vector_hub.hpp), so that one vector step advances the episodes of all of
+// them. On gpfd.vector_source's vector forms stepped in Python, where a step costs mostly per call
+// (NumPy, EnvPool), this is what spreads that cost over hundreds of lanes. Python itself never
+// runs on a member's fiber: every call into it goes to the thread's own stack (python_call.hpp), so
+// that groups play alike on every CPython (3.14 and later check the stack's bounds).
 #pragma once
 
 #include <cstddef>
@@ -11,19 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "vector_hub.hpp"  // Python.h: PY_VERSION_HEX.
+#include "vector_hub.hpp"
 
 namespace gpfd::python {
-
-// Whether lockstep groups play their members as fibers: not on CPython 3.14 and later, which checks
-// the machine stack against its thread's bounds, outside which a fiber's stack lies (a
-// RecursionError "stack overflow"); there a group's jobs play one after another, each in a vector
-// environment of its own, as gpfd.fitness plays one.
-#if PY_VERSION_HEX >= 0x030E0000
-inline constexpr bool kLockstepFibers = false;
-#else
-inline constexpr bool kLockstepFibers = true;
-#endif
 
 class LockstepGroup {
  public:

@@ -13,6 +13,7 @@
 #include "bindings.hpp"
 #include "env_batch.hpp"
 #include "gpfd/util/error.hpp"
+#include "python_call.hpp"
 #include "trial_runner.hpp"
 
 namespace gpfd::python {
@@ -44,10 +45,11 @@ class PythonEnvironment final : public env::Environment {
     bindNative();
   }
   ~PythonEnvironment() override {
-    nb::gil_scoped_acquire gil;
-    keepNative_.reset();
-    action_.reset();
-    adapter_.reset();
+    withPython([&] {
+      keepNative_.reset();
+      action_.reset();
+      adapter_.reset();
+    });
   }
 
   std::string name() const override { return name_; }
@@ -64,8 +66,7 @@ class PythonEnvironment final : public env::Environment {
       checkNative("reset");
       return;
     }
-    nb::gil_scoped_acquire gil;
-    copyState(adapter_.attr("reset")(seed));
+    withPython([&] { copyState(adapter_.attr("reset")(seed)); });
   }
 
   std::span<const double> state() const override { return state_; }
@@ -86,12 +87,13 @@ class PythonEnvironment final : public env::Environment {
       checkNative("step");
       return {reward, terminated, truncated};
     }
-    nb::gil_scoped_acquire gil;
-    auto buffer = nb::cast<nb::ndarray<double, nb::c_contig>>(action_);
-    std::copy(action.begin(), action.end(), buffer.data());
-    const nb::tuple result = nb::cast<nb::tuple>(adapter_.attr("step")(action_));
-    copyState(result[0]);
-    return {nb::cast<double>(result[1]), nb::cast<bool>(result[2]), nb::cast<bool>(result[3])};
+    return withPython([&]() -> env::StepResult {
+      auto buffer = nb::cast<nb::ndarray<double, nb::c_contig>>(action_);
+      std::copy(action.begin(), action.end(), buffer.data());
+      const nb::tuple result = nb::cast<nb::tuple>(adapter_.attr("step")(action_));
+      copyState(result[0]);
+      return {nb::cast<double>(result[1]), nb::cast<bool>(result[2]), nb::cast<bool>(result[3])};
+    });
   }
 
  private:
@@ -111,10 +113,11 @@ class PythonEnvironment final : public env::Environment {
   void checkNative(const char* call) {
     for (const double v : state_) {
       if (std::isfinite(v)) continue;
-      nb::gil_scoped_acquire gil;
-      auto obs = newArray<double>({state_.size()});
-      std::copy(state_.begin(), state_.end(), obs.data());
-      adapter_.attr("_observation")(obs, call);
+      withPython([&] {
+        auto obs = newArray<double>({state_.size()});
+        std::copy(state_.begin(), state_.end(), obs.data());
+        adapter_.attr("_observation")(obs, call);
+      });
       return;
     }
   }
@@ -152,10 +155,11 @@ void bindPythonEnvironments(nb::module_& m) {
         info.name = name;
         info.description = description;
         info.batch = pythonVectorForm(name);  // Where gpfd.vector_source finds a vector form.
-        info.make = [name](const Params&) -> std::unique_ptr<env::Environment> {
-          nb::gil_scoped_acquire gil;
-          nb::object adapter = nb::module_::import_("gpfd.user_env").attr("make_adapter")(name);
-          return std::make_unique<PythonEnvironment>(name, std::move(adapter));
+        info.make = [name](const Params&) {
+          return withPython([&]() -> std::unique_ptr<env::Environment> {
+            nb::object adapter = nb::module_::import_("gpfd.user_env").attr("make_adapter")(name);
+            return std::make_unique<PythonEnvironment>(name, std::move(adapter));
+          });
         };
         registry.add(std::move(info));
       },

@@ -18,6 +18,7 @@
 #include "gpfd/env/batch.hpp"
 #include "gpfd/util/error.hpp"
 #include "lockstep_group.hpp"
+#include "python_call.hpp"
 #include "vector_hub.hpp"
 
 namespace gpfd::python {
@@ -78,8 +79,10 @@ class PythonVectorBatch final : public env::BatchEnvironment {
 env::BatchForm pythonVectorForm(const std::string& name) {
   env::BatchForm form;
   form.available = [name](const env::Environment&) {
-    nb::gil_scoped_acquire gil;
-    return nb::cast<bool>(nb::module_::import_("gpfd.vector_source").attr("has_vector_form")(name));
+    return withPython([&] {
+      return nb::cast<bool>(
+          nb::module_::import_("gpfd.vector_source").attr("has_vector_form")(name));
+    });
   };
   form.make = [name](const env::Environment& prototype,
                      env::BatchIsa isa) -> std::unique_ptr<env::BatchEnvironment> {
@@ -88,11 +91,12 @@ env::BatchForm pythonVectorForm(const std::string& name) {
     const int choices = space.continuous() ? 0 : space.choices.front();  // One component.
     const std::size_t stateDim = scalar->stateDim(), components = space.components;
     auto makeHub = [&](std::size_t members) {
-      nb::gil_scoped_acquire gil;
-      nb::object adapter =
-          nb::module_::import_("gpfd.vector_source")
-              .attr("make_vector_adapter")(name, stateDim, choices, space.low, space.high);
-      return std::make_shared<VectorHub>(std::move(adapter), stateDim, components, members);
+      return withPython([&] {
+        nb::object adapter =
+            nb::module_::import_("gpfd.vector_source")
+                .attr("make_vector_adapter")(name, stateDim, choices, space.low, space.high);
+        return std::make_shared<VectorHub>(std::move(adapter), stateDim, components, members);
+      });
     };
     if (LockstepGroup* group = LockstepGroup::current()) {
       return std::make_unique<PythonVectorBatch>(std::move(scalar), isa, group->hub(name, makeHub),

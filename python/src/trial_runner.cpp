@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "genome_blob.hpp"
+#include "gpfd/fibers/scheduler.hpp"
 #include "gpfd/run/run_grid.hpp"
 #include "lockstep_group.hpp"
 
@@ -211,7 +212,9 @@ void forgetCachedTasks() {
 }
 
 void bindTrialRunner(nb::module_& m) {
-  m.attr("LOCKSTEP_FIBERS") = kLockstepFibers;  // Lockstep groups play as fibers (this Python).
+  m.def("on_thread_stack", &fibers::onThreadsOwnStack,
+        "Whether the caller runs on its thread's own stack, not on a lockstep group's fiber: "
+        "true for every call gpfd makes into Python (tests check it from an environment).");
   m.def("train_runs_group", &trainRunsGroup, nb::arg("config_text"), nb::arg("budget"),
         nb::arg("tasks"),
         "The learning runs of each (features, seeds), played in one lockstep group: the runs' "

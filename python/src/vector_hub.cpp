@@ -21,7 +21,8 @@
 #include <cmath>
 #include <numeric>
 
-#include "fibers.hpp"
+#include "gpfd/fibers/scheduler.hpp"
+#include "python_call.hpp"
 
 namespace gpfd::python {
 
@@ -34,18 +35,19 @@ VectorHub::VectorHub(nb::object adapter, std::size_t stateDim, std::size_t actio
       adapter_(std::move(adapter)) {}
 
 VectorHub::~VectorHub() {
-  nb::gil_scoped_acquire gil;
-  try {
-    adapter_.attr("close")();
-  } catch (nb::python_error& e) {
-    e.discard_as_unraisable(__func__);
-  }
-  keep_.clear();
-  finals_.reset();
-  step_.reset();
-  stepSubset_.reset();
-  actions_.reset();
-  adapter_.reset();
+  withPython([&] {
+    try {
+      adapter_.attr("close")();
+    } catch (nb::python_error& e) {
+      e.discard_as_unraisable(__func__);
+    }
+    keep_.clear();
+    finals_.reset();
+    step_.reset();
+    stepSubset_.reset();
+    actions_.reset();
+    adapter_.reset();
+  });
 }
 
 // ---- the rounds ---------------------------------------------------------------------------------
@@ -70,7 +72,7 @@ void VectorHub::leave(std::size_t m) {
   if (!members_[m].playing) return;
   members_[m].playing = false;
   --playing_;
-  if (!failure_ && roundDue() && runRound()) throwFailure(true);
+  if (!failure_ && roundDue() && runRoundOnThreadStack()) throwFailure(true);
 }
 
 void VectorHub::await(std::size_t m, Wants wants, const env::BatchBuffers& io) {
@@ -79,10 +81,18 @@ void VectorHub::await(std::size_t m, Wants wants, const env::BatchBuffers& io) {
   me.wants = wants;
   me.io = &io;
   ++waiting_;
-  if (roundDue() && runRound()) throwFailure(true);
+  if (roundDue() && runRoundOnThreadStack()) throwFailure(true);
   // A member of a group hands over to the others until a round has run its call.
-  if (me.wants != Wants::Nothing) Fibers::waitUntil([&me] { return me.wants == Wants::Nothing; });
+  if (me.wants != Wants::Nothing) {
+    fibers::Scheduler::waitUntil([&me] { return me.wants == Wants::Nothing; });
+  }
   if (failure_) throwFailure(false);
+}
+
+bool VectorHub::runRoundOnThreadStack() {
+  bool failed = false;
+  fibers::Scheduler::onThreadStack([&] { failed = runRound(); });
+  return failed;
 }
 
 bool VectorHub::runRound() {
@@ -182,7 +192,7 @@ void VectorHub::resetMembers(const std::vector<std::size_t>& resetting) {
 namespace {
 
 bool hasItem(nb::handle info, const char* key) {
-  return PyDict_Check(info.ptr()) && PyDict_GET_SIZE(info.ptr()) > 0 &&
+  return PyDict_Check(info.ptr()) && PyDict_Size(info.ptr()) > 0 &&
          PyDict_GetItemString(info.ptr(), key) != nullptr;
 }
 
@@ -211,16 +221,16 @@ void VectorHub::stepMembers(const std::vector<std::size_t>& stepping) {
     adapter_.attr("step_raised")(e.value(), steps_, activeSubEnvironments(stepping));
     throw std::logic_error("VectorAdapter.step_raised must raise");
   }
-  if (!PyTuple_Check(result.ptr()) || PyTuple_GET_SIZE(result.ptr()) != 5) {
+  if (!PyTuple_Check(result.ptr()) || PyTuple_Size(result.ptr()) != 5) {
     adapter_.attr("bad_result")(result, steps_);
     throw std::logic_error("VectorAdapter.bad_result must raise");
   }
-  const nb::handle info(PyTuple_GET_ITEM(result.ptr(), 4));
+  const nb::handle info(PyTuple_GetItem(result.ptr(), 4));
   Outputs out;
-  out.obs = read(PyTuple_GET_ITEM(result.ptr(), 0), "observations", 2, stateDim_);
-  out.reward = read(PyTuple_GET_ITEM(result.ptr(), 1), "rewards", 1);
-  out.terminated = read(PyTuple_GET_ITEM(result.ptr(), 2), "terminated", 1);
-  out.truncated = read(PyTuple_GET_ITEM(result.ptr(), 3), "truncated", 1);
+  out.obs = read(PyTuple_GetItem(result.ptr(), 0), "observations", 2, stateDim_);
+  out.reward = read(PyTuple_GetItem(result.ptr(), 1), "rewards", 1);
+  out.terminated = read(PyTuple_GetItem(result.ptr(), 2), "terminated", 1);
+  out.truncated = read(PyTuple_GetItem(result.ptr(), 3), "truncated", 1);
   // Same-step autoreset: the observation that ended an episode is in info["final_obs"].
   if (hasItem(info, "_final_obs")) {
     finals_ = nb::cast<nb::tuple>(adapter_.attr("final_observations")(

@@ -3,10 +3,11 @@
 // step advances the episodes of all of them (a lockstep group, lockstep_group.hpp; alone, a group
 // of one). Each player (member) plays its lanes in its own range of sub-environments.
 //
-// Rounds: a member's resetAll or step waits (the members are fibers of one thread, fibers.hpp)
-// until every member still playing has asked for one, then the last to ask runs the round: the
-// steps of all members that asked for a step, in one vector step; or, when every member asks for a
-// reset, one reset of the whole vector environment. So the members play their batches of episodes
+// Rounds: a member's resetAll or step waits (the members are fibers of one thread,
+// gpfd/fibers/scheduler.hpp) until every member still playing has asked for one, then the last to
+// ask has the round run on the thread's own stack (never on a fiber's: it calls Python), every
+// member suspended meanwhile: the steps of all members that asked for a step, in one vector step;
+// or, when every member asks for a reset, one reset of the whole vector environment. So the members play their batches of episodes
 // together and start the next batches together, and which calls make up a round follows from what
 // the members ask: the same members give the same rounds. A member's sub-environments step along
 // with the others while it waits for a reset (unless the vector form steps subsets, EnvPool); what
@@ -75,8 +76,10 @@ class VectorHub {
   // Asks for a round, runs it where this call completes it, else waits for it (handing over to
   // the group's other fibers); throws the round's failure (the cause where this member ran it).
   void await(std::size_t m, Wants wants, const env::BatchBuffers& io);
-  // Runs the round now due; true when it failed (failure_ set).
+  // Runs the round now due; true when it failed (failure_ set). runRoundOnThreadStack: from a
+  // member's fiber, on the thread's own stack.
   bool runRound();
+  bool runRoundOnThreadStack();
   bool roundDue() const { return playing_ > 0 && waiting_ == playing_; }
   [[noreturn]] void throwFailure(bool ranIt);
 
