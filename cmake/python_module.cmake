@@ -33,9 +33,13 @@ file(CONFIGURE OUTPUT ${GPFD_STUBGEN_PATH}/gpfd/__init__.py CONTENT "")
 set_target_properties(_core PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${GPFD_STUBGEN_PATH}/gpfd)
 # python/stubgen_patterns.txt completes what the bindings' signatures leave open.
 set(GPFD_STUBGEN_PATTERNS ${PROJECT_SOURCE_DIR}/python/stubgen_patterns.txt)
-nanobind_add_stub(_core_stub MODULE gpfd._core PYTHON_PATH ${GPFD_STUBGEN_PATH}
-                  PATTERN_FILE ${GPFD_STUBGEN_PATTERNS} DEPENDS _core
-                  OUTPUT ${GPFD_STUBGEN_PATH}/gpfd/_core.pyi)
+# Not in a sanitizer build (scripts/check-lockstep-memory), whose module imports only into a
+# Python that has the sanitizer's runtime preloaded.
+if(NOT GPFD_SANITIZE)
+  nanobind_add_stub(_core_stub MODULE gpfd._core PYTHON_PATH ${GPFD_STUBGEN_PATH}
+                    PATTERN_FILE ${GPFD_STUBGEN_PATTERNS} DEPENDS _core
+                    OUTPUT ${GPFD_STUBGEN_PATH}/gpfd/_core.pyi)
+endif()
 
 # The wheel (pyproject.toml installs the component gpfd_wheel only, not cmake/install.cmake's C++
 # package): the module with its stubs in gpfd/, and the command-line tool as the script `gpfd`.

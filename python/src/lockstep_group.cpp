@@ -32,7 +32,9 @@ void LockstepGroup::leave(std::size_t m) {
   if (hub_ != nullptr) hub_->leave(m);
 }
 
-LockstepGroup* LockstepGroup::current() { return fibers::Scheduler::inFiber() ? currentGroup : nullptr; }
+LockstepGroup* LockstepGroup::current() {
+  return fibers::Scheduler::inFiber() ? currentGroup : nullptr;
+}
 
 std::size_t LockstepGroup::currentMember() { return fibers::Scheduler::current(); }
 

@@ -7,11 +7,11 @@
 // gpfd/fibers/scheduler.hpp) until every member still playing has asked for one, then the last to
 // ask has the round run on the thread's own stack (never on a fiber's: it calls Python), every
 // member suspended meanwhile: the steps of all members that asked for a step, in one vector step;
-// or, when every member asks for a reset, one reset of the whole vector environment. So the members play their batches of episodes
-// together and start the next batches together, and which calls make up a round follows from what
-// the members ask: the same members give the same rounds. A member's sub-environments step along
-// with the others while it waits for a reset (unless the vector form steps subsets, EnvPool); what
-// they return is not read.
+// or, when every member asks for a reset, one reset of the whole vector environment. So the members
+// play their batches of episodes together and start the next batches together, and which calls make
+// up a round follows from what the members ask: the same members give the same rounds. A member's
+// sub-environments step along with the others while it waits for a reset (unless the vector form
+// steps subsets, EnvPool); what they return is not read.
 #pragma once
 
 #include <cstdint>

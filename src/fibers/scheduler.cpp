@@ -33,8 +33,8 @@ struct Fiber {
   ctx::fiber scheduler;  // Inside it: where it hands over to the thread.
   StackBounds stack;     // Its own stack, for the sanitizers.
   bool ended = false;
-  std::function<bool()> ready;                       // Set while it waits.
-  const std::function<void()>* request = nullptr;    // Set while it asks for onThreadStack.
+  std::function<bool()> ready;                     // Set while it waits.
+  const std::function<void()>* request = nullptr;  // Set while it asks for onThreadStack.
   std::exception_ptr requestError, error;
 };
 
@@ -43,7 +43,7 @@ struct Schedule {
   std::size_t running = kNone;  // The job running, on its fiber or through onThreadStack.
   bool onFiberStack = false;    // Whether the code running is on a fiber's stack.
   bool cancelling = false;
-  StackBounds thread;           // The thread's stack, for the sanitizers.
+  StackBounds thread;  // The thread's stack, for the sanitizers.
 };
 
 thread_local Schedule* schedule = nullptr;
@@ -114,21 +114,21 @@ std::vector<std::exception_ptr> Scheduler::run(std::size_t n,
   for (std::size_t i = 0; i < n; ++i) {
     auto fiber = std::make_unique<Fiber>();
     Fiber* f = fiber.get();
-    f->self = ctx::fiber(std::allocator_arg, RecordedStack(f->stack),
-                         [f, i, &job](ctx::fiber&& thread) {
-                           arrivedOnFiber(schedule->thread);
-                           f->scheduler = std::move(thread);
-                           try {
-                             job(i);
-                           } catch (const ctx::detail::forced_unwind&) {
-                             throw;  // Boost.Context's own unwinding of a fiber destroyed early.
-                           } catch (...) {
-                             f->error = std::current_exception();
-                           }
-                           f->ended = true;
-                           leavingFiberForGood(schedule->thread);
-                           return std::move(f->scheduler);
-                         });
+    f->self =
+        ctx::fiber(std::allocator_arg, RecordedStack(f->stack), [f, i, &job](ctx::fiber&& thread) {
+          arrivedOnFiber(schedule->thread);
+          f->scheduler = std::move(thread);
+          try {
+            job(i);
+          } catch (const ctx::detail::forced_unwind&) {
+            throw;  // Boost.Context's own unwinding of a fiber destroyed early.
+          } catch (...) {
+            f->error = std::current_exception();
+          }
+          f->ended = true;
+          leavingFiberForGood(schedule->thread);
+          return std::move(f->scheduler);
+        });
     s.fibers.push_back(std::move(fiber));
   }
   schedule = &s;
