@@ -16,10 +16,11 @@ namespace gpfd::python {
 namespace {
 
 // gpfd::InputError becomes gpfd.InputError (a ValueError) with the message "what (where)", the
-// form the command line prints.
+// form the command line prints. Named so (its __module__ is "gpfd"), tracebacks and pickling find
+// it where the package exports it.
 void bindErrors(nb::module_& m) {
   static PyObject* type =
-      PyErr_NewExceptionWithDoc("gpfd._core.InputError",
+      PyErr_NewExceptionWithDoc("gpfd.InputError",
                                 "Bad input to gpfd: a parameter, a config, a features file, an "
                                 "argument. The message names what and where.",
                                 PyExc_ValueError, nullptr);
