@@ -14,8 +14,10 @@ class EnvError(RuntimeError):
     that is not finite or not of its space's size."""
 
 
-# Tracebacks and reprs name the classes where users find them: gpfd.EnvError, gpfd.InputError
-# (the extension names InputError so itself); pickling finds them there too.
+# Tracebacks and reprs name the classes where users find them, gpfd.EnvError and gpfd.InputError;
+# pickling finds them there too. The extension names its class gpfd._core.InputError, where its
+# stubs (nanobind's stubgen, which imports gpfd._core alone) declare it.
 EnvError.__module__ = "gpfd"
+InputError.__module__ = "gpfd"
 
 __all__ = ["EnvError", "InputError"]

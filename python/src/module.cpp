@@ -16,11 +16,10 @@ namespace gpfd::python {
 namespace {
 
 // gpfd::InputError becomes gpfd.InputError (a ValueError) with the message "what (where)", the
-// form the command line prints. Named so (its __module__ is "gpfd"), tracebacks and pickling find
-// it where the package exports it.
+// form the command line prints.
 void bindErrors(nb::module_& m) {
   static PyObject* type =
-      PyErr_NewExceptionWithDoc("gpfd.InputError",
+      PyErr_NewExceptionWithDoc("gpfd._core.InputError",
                                 "Bad input to gpfd: a parameter, a config, a features file, an "
                                 "argument. The message names what and where.",
                                 PyExc_ValueError, nullptr);
