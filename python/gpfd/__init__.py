@@ -21,7 +21,7 @@ from gpfd import envs as _envs
 from gpfd import wrappers
 from gpfd._core import FeatureSet, InputError, __version__
 from gpfd.discovery import Run, assess, builtin_configs, evolve, fitness, fitness_of_each, load_run
-from gpfd.user_env import EnvError
+from gpfd.errors import EnvError
 from gpfd.vector_source import VectorFactory
 
 _envs.register_all()

@@ -21,6 +21,7 @@ import numpy as np
 from gymnasium import spaces
 
 from gpfd import _core, render
+from gpfd.registry import is_builtin
 
 # Gymnasium ids of the built-in environments; any other registered gpfd environment gets
 # gpfd/<Name>-v0.
@@ -126,6 +127,12 @@ class GpfdEnv(gym.Env):
         return obs, reward, terminated, truncated, self._info()
 
     @property
+    def native_engine(self) -> _core.EnvBatch:
+        """The C++ engine that steps this environment (one instance), which gpfd's own drivers
+        (gpfd.vector_source.native_single) step without Python."""
+        return self._core
+
+    @property
     def state(self) -> np.ndarray:
         """The state variables (a copy)."""
         return self._core.state(0)
@@ -159,8 +166,6 @@ class GpfdEnv(gym.Env):
 
 def register_all() -> None:
     """Registers every gpfd environment with Gymnasium (idempotent)."""
-    from gpfd.user_env import is_builtin
-
     for name in filter(is_builtin, _core.env_names()):
         env_id = gym_id(name)
         if env_id in gym.registry:

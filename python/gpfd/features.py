@@ -5,7 +5,9 @@ from __future__ import annotations
 from typing import Any
 
 from gpfd import _core
-from gpfd.user_env import is_builtin
+from gpfd.envs import GpfdEnv
+from gpfd.registry import is_builtin
+from gpfd.user_env import state_names
 
 
 def expectation(env: Any, variables: Any, params: dict) -> tuple[str, list | None, list | None]:
@@ -28,9 +30,6 @@ def expectation(env: Any, variables: Any, params: dict) -> tuple[str, list | Non
             raise TypeError(f"parameters are for gpfd's environments; {env!r} is not one")
         return env, names, None
     # A Gymnasium environment, possibly wrapped.
-    from gpfd.envs import GpfdEnv
-    from gpfd.user_env import state_names
-
     if params:
         raise TypeError("give parameters with a gpfd environment name, not with an environment")
     base = getattr(env, "unwrapped", env)

@@ -25,28 +25,18 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
-from gpfd import _core, vector_source
+from gpfd import _core, registry, vector_cache, vector_source
+from gpfd.errors import EnvError  # Also gpfd.user_env.EnvError, as before.
+from gpfd.registry import is_builtin  # Also gpfd.user_env.is_builtin, as before.
 
 if TYPE_CHECKING:
     from multiprocessing.pool import Pool
 
-
-class EnvError(RuntimeError):
-    """A Gymnasium environment stepped by gpfd misbehaved: it raised, or returned an observation
-    that is not finite or not of its space's size."""
-
-
-# The environment factory of each registered name, in this process.
-_factories: dict[str, Callable[[], gym.Env]] = {}
+    from gpfd.protocol import AdapterProtocol
 
 #: The shipped config (configs/user-env.toml) of gpfd.evolve and gpfd.assess on an environment
 #: stepped in Python, when no config is given.
 DEFAULT_CONFIG = "user-env"
-
-
-def is_builtin(name: str) -> bool:
-    """Whether `name` is one of gpfd's own (C++) environments, not one registered from Python."""
-    return name in _core.env_names() and name not in _factories
 
 
 def state_names(space: spaces.Space) -> list[str]:
@@ -103,28 +93,37 @@ def run_name(name: str) -> str:
 
 
 def register(name: str, factory: Callable[[], gym.Env]) -> None:
-    """Makes `name` a gpfd environment whose instances `factory` makes (in this process)."""
-    _factories[name] = factory
-    _core.register_python_env(name, "a Gymnasium environment stepped in Python")
+    """Makes `name` a gpfd environment whose instances `factory` makes (in this process); the
+    idle vector environments of an earlier registration of the name are closed."""
+    vector_cache.close(name)
+    registry.add(name, factory)
 
 
 def make_adapter(name: str) -> Adapter:
     """Called by gpfd's registry (C++) for each new instance."""
+    factory = registry.factory(name)
+    if factory is None:
+        raise EnvError(f"{name} is not registered in this process (gpfd.user_env.register)")
     try:
-        env = _factories[name]()
+        env = factory()
     except Exception as e:
         raise EnvError(f"{name}: making the environment raised {type(e).__name__}: {e}") from e
     return Adapter(name, env)
 
 
 class Adapter:
-    """Drives one Gymnasium environment for gpfd: checks its spaces once and every observation,
-    converts actions, and turns its exceptions into EnvError naming the call."""
+    """Drives one Gymnasium environment for gpfd (gpfd.protocol.AdapterProtocol): checks its
+    spaces once and every observation, converts actions, and turns its exceptions into EnvError
+    naming the call."""
 
     def __init__(self, name: str, env: gym.Env):
         self.name = name
         self.env = env
         self.state_dim = len(state_names(env.observation_space))
+        self.choices = 0
+        self.low: list[float] = []
+        self.high: list[float] = []
+        self.action_dtype: np.dtype[Any] | None = None
         space = env.action_space
         if isinstance(space, spaces.Discrete):
             self.action_kind = "discrete"
@@ -137,10 +136,10 @@ class Adapter:
                 raise TypeError(f"{name}: gpfd's learners need finite action bounds, got {space}")
             self.action_kind = "continuous"
             self.low, self.high = low.tolist(), high.tolist()
-            self._shape, self._dtype = space.shape, space.dtype
+            self._shape, self.action_dtype = space.shape, np.dtype(space.dtype)
         else:
             raise TypeError(f"{name}: gpfd drives Box or Discrete action spaces, not {space}")
-        self._steps = 0
+        self._steps = 0  # The steps of the episode so far.
 
     def reset(self, seed: int) -> np.ndarray:
         self._steps = 0
@@ -148,29 +147,33 @@ class Adapter:
             obs, _ = self.env.reset(seed=seed)
         except Exception as e:
             raise EnvError(f"{self.name}: reset(seed={seed}) raised {type(e).__name__}: {e}") from e
-        return self._observation(obs, f"reset(seed={seed})")
+        return self.check_observation(obs, f"reset(seed={seed})")
 
     def step(self, action: np.ndarray) -> tuple[np.ndarray, float, bool, bool]:
+        """Step n of the episode (counted from 1 after each reset: the environment's n-th step
+        call), as its errors name it."""
         if self.action_kind == "discrete":
             act: Any = int(action[0]) + self._start
         else:
-            act = action.reshape(self._shape).astype(self._dtype)
+            act = action.reshape(self._shape).astype(self.action_dtype)
+        self._steps += 1
         try:
             obs, reward, terminated, truncated, _ = self.env.step(act)
         except Exception as e:
             raise EnvError(
                 f"{self.name}: step({act!r}) raised {type(e).__name__}: {e} (step {self._steps} "
-                "of an episode)"
+                "of its episode, counted from 1)"
             ) from e
-        self._steps += 1
         return (
-            self._observation(obs, f"step {self._steps}"),
+            self.check_observation(obs, f"step {self._steps}"),
             float(reward),
             bool(terminated),
             bool(truncated),
         )
 
-    def _observation(self, obs: Any, where: str) -> np.ndarray:
+    def check_observation(self, obs: Any, where: str) -> np.ndarray:
+        """`obs` as float64 values (C-contiguous, flattened), or EnvError naming `where` (the
+        call after which it came) where it is not numeric, of another size or not finite."""
         try:
             values = np.ascontiguousarray(obs, dtype=np.float64).reshape(-1)
         except (TypeError, ValueError) as e:
@@ -187,6 +190,16 @@ class Adapter:
                 f"{bad[0]}; gpfd needs finite observations"
             )
         return values
+
+    # The name python/src/python_environment.cpp looked it up by, until it calls
+    # check_observation.
+    _observation = check_observation
+
+
+if TYPE_CHECKING:
+
+    def _conforms(adapter: Adapter) -> AdapterProtocol:
+        return adapter  # mypy: Adapter is what C++ drives.
 
 
 def _init_worker(name: str, payload: bytes) -> None:

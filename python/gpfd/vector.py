@@ -147,6 +147,13 @@ class GpfdVectorEnv(VectorEnv):
         return tuple(render.frame(self._core, i) for i in range(self.num_envs))
 
     @property
+    def native_engine(self) -> _core.EnvBatch:
+        """The C++ engine that steps every instance (one call per step), which a lockstep group
+        (python/src/vector_hub.cpp, through gpfd.vector_source.VectorAdapter) steps without
+        Python."""
+        return self._core
+
+    @property
     def states(self) -> np.ndarray:
         """The state variables of every instance (N x d, a copy)."""
         return np.stack([self._core.state(i) for i in range(self.num_envs)])

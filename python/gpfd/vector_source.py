@@ -31,14 +31,21 @@ import contextlib
 import functools
 import math
 from collections.abc import Callable, Sequence
-from typing import Any, cast
+from typing import TYPE_CHECKING, Any, NoReturn, cast
 
 import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 from gymnasium.vector import AsyncVectorEnv, AutoresetMode, SyncVectorEnv, VectorEnv
+from gymnasium.wrappers import OrderEnforcing, PassiveEnvChecker
 
-from gpfd import _core
+from gpfd import _core, registry, vector_cache
+from gpfd.envs import GpfdEnv
+from gpfd.errors import EnvError
+from gpfd.vector import GpfdVectorEnv
+
+if TYPE_CHECKING:
+    from gpfd.protocol import AdapterProtocol, VectorAdapterProtocol
 
 ENVPOOL_PREFIX = "envpool/"
 
@@ -114,8 +121,6 @@ class GymnasiumSource(VectorSource):
         )
 
     def seeds_lanes(self, envs: VectorEnv) -> bool:
-        from gpfd.vector import GpfdVectorEnv
-
         return isinstance(envs, (GpfdVectorEnv, SyncVectorEnv, AsyncVectorEnv))
 
 
@@ -244,9 +249,7 @@ def envpool_source(env: str, env_kwargs: dict[str, Any] | None) -> tuple[str, Ve
 
 def has_vector_form(name: str) -> bool:
     """Whether the environment registered as `name` has a vector form (asked by C++)."""
-    from gpfd import user_env
-
-    source = user_env._factories.get(name)
+    source = registry.factory(name)
     return isinstance(source, VectorSource) and source.has_vector()
 
 
@@ -256,39 +259,25 @@ def make_vector_adapter(
     """Called by C++ for each batched form made: the adapter of `name`'s vector form, which must
     agree with the single environment's state size and action space (`choices` > 0: Discrete of
     so many; else a Box from `low` to `high`)."""
-    from gpfd import user_env
-
-    source = user_env._factories[name]
-    assert isinstance(source, VectorSource)
+    source = registry.factory(name)
+    assert isinstance(source, VectorSource), f"{name} has no vector form"
     return VectorAdapter(name, source, state_dim, choices, low, high)
 
 
-def native_single(name: str, adapter: Any) -> tuple[Any, bool] | None:
+def native_single(name: str, adapter: AdapterProtocol) -> tuple[_core.EnvBatch, bool] | None:
     """(engine, float32 actions) where the environment registered as `name` is one of gpfd's own,
     made from its Gymnasium id by ``gymnasium.make`` with only the wrappers that adds by default
     (order enforcing, the passive checker, which change nothing): its C++ engine (EnvBatch), which
     C++ then resets and steps as GpfdEnv does, without Python. None for any other (asked by C++
     for each instance)."""
-    from gymnasium.wrappers import OrderEnforcing, PassiveEnvChecker
-
-    from gpfd import user_env
-    from gpfd.envs import GpfdEnv
-
-    if not isinstance(user_env._factories.get(name), GymnasiumSource):
+    if not isinstance(registry.factory(name), GymnasiumSource):
         return None
     env = adapter.env
     while type(env) in (OrderEnforcing, PassiveEnvChecker):
         env = env.env
     if type(env) is not GpfdEnv:
         return None
-    return env._core, adapter.action_kind == "continuous" and adapter._dtype == np.float32
-
-
-# Vector environments that a closed adapter left, by (name, source, num_envs), for the next one:
-# making one costs more than a short fitness evaluation's resets. Reused only where every reset
-# reseeds what the lanes play (not EnvPool, seeded at creation), so that reuse changes nothing.
-_idle: dict[tuple[str, VectorSource, int], list[VectorEnv]] = {}
-_IDLE_MAX = 4  # Per key: the vector environments (lockstep groups) alive at once in a process.
+    return env.native_engine, adapter.action_dtype == np.float32
 
 
 def _mixed_seed(seeds: Sequence[int]) -> int:
@@ -298,10 +287,10 @@ def _mixed_seed(seeds: Sequence[int]) -> int:
 
 
 class VectorAdapter:
-    """One vector environment driven by a lockstep group's players (python/src/vector_hub.cpp):
-    made on the first reset with as many sub-environments as lanes (again, larger, when a reset
-    needs more), seeded, checked, and every failure raised as gpfd.EnvError naming the
-    environment, the call, the step and the lane."""
+    """One vector environment driven by a lockstep group's players (python/src/vector_hub.cpp,
+    gpfd.protocol.VectorAdapterProtocol): made on the first reset with as many sub-environments
+    as lanes (again, larger, when a reset needs more), seeded, checked, and every failure raised
+    as gpfd.EnvError naming the environment, the call, the step and the lane."""
 
     def __init__(
         self,
@@ -327,7 +316,7 @@ class VectorAdapter:
         self.step_function: Callable[..., Any] | None = None
         self.steps_subsets = False  # step_subset steps only the sub-environments given.
         # gpfd's own vector environment: its C++ engine, which C++ steps without Python.
-        self.native_engine: Any = None
+        self.native_engine: _core.EnvBatch | None = None
         self.actions: np.ndarray | None = None
 
     # -- what C++ calls ------------------------------------------------------------------------
@@ -393,13 +382,13 @@ class VectorAdapter:
             ) from e
         return self._observations(obs, f"reset of ended lanes before vector step {step}", step, 0)
 
-    def step_raised(self, error: BaseException, step: int, lanes: list[int]) -> None:
+    def step_raised(self, error: BaseException, step: int, lanes: list[int]) -> NoReturn:
         raise self._error(
             f"step of its vector form raised {type(error).__name__}: {error} (vector step {step}, "
             f"lanes {_ranges(lanes)} playing episodes)"
         ) from error
 
-    def bad_result(self, result: Any, step: int) -> None:
+    def bad_result(self, result: Any, step: int) -> NoReturn:
         raise self._error(
             f"step of its vector form returned {type(result).__name__} at vector step {step}, "
             "not (obs, rewards, terminated, truncated, info)"
@@ -462,13 +451,13 @@ class VectorAdapter:
 
     def bad_observation(
         self, step: int, lane: int, episode_step: int, index: int, value: float
-    ) -> None:
+    ) -> NoReturn:
         raise self._error(
             f"the observation of lane {lane} after step {episode_step} of its episode (vector "
             f"step {step}) holds {value} at index {index}; gpfd needs finite observations"
         )
 
-    def reset_on_its_own(self, step: int, lane: int, episode_step: int, how: str) -> None:
+    def reset_on_its_own(self, step: int, lane: int, episode_step: int, how: str) -> NoReturn:
         raise self._error(
             f"lane {lane} of its vector form reset on its own at vector step {step}, step "
             f"{episode_step} of its episode, which had not ended ({how}); gpfd starts every "
@@ -476,20 +465,20 @@ class VectorAdapter:
         )
 
     def close(self) -> None:
+        """Parks the vector environment for the next adapter of the same environment, source and
+        size (gpfd.vector_cache), or closes it. Parked only where every reset reseeds what the
+        lanes play (not EnvPool, seeded at creation), so that reuse changes nothing."""
         if self.envs is not None:
-            idle = _idle.setdefault(self._key(self.num_envs), [])
-            if self.source.seeded_at_creation or len(idle) >= _IDLE_MAX:
-                self.envs.close()
-            else:
-                idle.append(self.envs)
-            self.envs = None
+            envs, self.envs = self.envs, None
             self.native_engine = None
+            if self.source.seeded_at_creation or not vector_cache.park(
+                self._key(self.num_envs), envs
+            ):
+                envs.close()
 
     # -- inside --------------------------------------------------------------------------------
 
     def _error(self, message: str) -> Exception:
-        from gpfd.user_env import EnvError
-
         return EnvError(f"{self.name}: {message}")
 
     def _key(self, num_envs: int) -> tuple[str, VectorSource, int]:
@@ -497,10 +486,8 @@ class VectorAdapter:
 
     def _open(self, num_envs: int, seed: int) -> None:
         self.close()
-        idle = _idle.get(self._key(num_envs))
-        if idle and not self.source.seeded_at_creation:
-            envs = idle.pop()
-        else:
+        envs = None if self.source.seeded_at_creation else vector_cache.take(self._key(num_envs))
+        if envs is None:
             try:
                 envs = self.source.make_vector(num_envs, seed)
             except Exception as e:
@@ -515,11 +502,9 @@ class VectorAdapter:
         self.resets_ended = mode == AutoresetMode.DISABLED
         self.step_function = envs.step
         self.steps_subsets = self.source.steps_subsets
-        from gpfd.vector import GpfdVectorEnv
-
         # Made from a gpfd id (not a VectorFactory, whose make_vec may be anything).
         native = type(envs) is GpfdVectorEnv and isinstance(self.source, GymnasiumSource)
-        self.native_engine = cast(Any, envs)._core if native else None
+        self.native_engine = cast(GpfdVectorEnv, envs).native_engine if native else None
         space = envs.single_action_space
         if isinstance(space, spaces.Discrete):
             self.start = int(space.start)
@@ -589,3 +574,9 @@ def _ranges(lanes: Sequence[int]) -> str:
         else:
             spans.append([lane, lane])
     return ", ".join(str(a) if a == b else f"{a}-{b}" for a, b in spans)
+
+
+if TYPE_CHECKING:
+
+    def _conforms(adapter: VectorAdapter) -> VectorAdapterProtocol:
+        return adapter  # mypy: VectorAdapter is what C++ drives.

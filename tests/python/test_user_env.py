@@ -131,7 +131,8 @@ BAD_ENVS = [
     ),
     (
         RaisesInStep,
-        r"python:RaisesInStep: step\(.*\) raised RuntimeError: the simulator crashed \(step 0",
+        r"python:RaisesInStep: step\(.*\) raised RuntimeError: the simulator crashed \(step 1 of "
+        r"its episode, counted from 1\)",
     ),
 ]
 
