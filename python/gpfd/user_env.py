@@ -191,10 +191,6 @@ class Adapter:
             )
         return values
 
-    # The name python/src/python_environment.cpp looked it up by, until it calls
-    # check_observation.
-    _observation = check_observation
-
 
 if TYPE_CHECKING:
 

@@ -116,7 +116,7 @@ class PythonEnvironment final : public env::Environment {
       withPython([&] {
         auto obs = newArray<double>({state_.size()});
         std::copy(state_.begin(), state_.end(), obs.data());
-        adapter_.attr("_observation")(obs, call);
+        adapter_.attr("check_observation")(obs, call);
       });
       return;
     }

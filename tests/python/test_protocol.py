@@ -15,9 +15,6 @@ DRIVERS = {
     "python_environment.cpp": protocol.AdapterProtocol,
     "vector_hub.cpp": protocol.VectorAdapterProtocol,
 }
-# Names the C++ still looks up that the protocol calls otherwise: the adapter keeps both.
-RENAMED = {"_observation": "check_observation"}
-
 
 def members(cls: type) -> set[str]:
     return {name for name in vars(cls) if not name.startswith("_")} - {"mro"}
@@ -33,7 +30,7 @@ def looked_up(repo, file: str) -> set[str]:
 def test_what_cpp_looks_up_is_in_the_protocol(repo, file, cls):
     names = looked_up(repo, file)
     assert len(names) >= 8, f"{file}: the adapter's lookups were not found"
-    missing = {RENAMED.get(name, name) for name in names} - members(cls)
+    missing = names - members(cls)
     assert not missing, f"{file} looks up {sorted(missing)}, not in {cls.__name__}"
 
 
@@ -46,13 +43,11 @@ def test_the_module_functions_cpp_calls_exist(repo):
         assert callable(getattr(__import__(module, fromlist=[name]), name)), (module, name)
 
 
-def test_the_adapter_has_every_member_and_keeps_the_old_name():
+def test_the_adapter_has_every_member():
     for env, kind in (("CartPole-v1", "discrete"), ("Pendulum-v1", "continuous")):
         adapter = user_env.Adapter(env, gym.make(env))
         assert isinstance(adapter, protocol.AdapterProtocol)
         assert adapter.action_kind == kind
-        for old, new in RENAMED.items():
-            assert getattr(type(adapter), old) is getattr(type(adapter), new)
 
 
 def test_the_vector_adapter_has_every_member_after_a_reset():
