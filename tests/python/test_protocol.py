@@ -16,6 +16,7 @@ DRIVERS = {
     "vector_hub.cpp": protocol.VectorAdapterProtocol,
 }
 
+
 def members(cls: type) -> set[str]:
     return {name for name in vars(cls) if not name.startswith("_")} - {"mro"}
 
