@@ -2,6 +2,7 @@
 confirmation, assessment), with the same results for any number of them; the config and the
 results directory a run on it gets; an id registered under ``if __name__ == "__main__":``."""
 
+import json
 import os
 import subprocess
 import sys
@@ -48,7 +49,8 @@ def resets(directory: Path) -> dict[int, int]:
 
 
 def run_files(directory: Path) -> dict[str, str]:
-    """A run's results, but timings (generations.csv's last column, the checkpoint)."""
+    """A run's results, but timings (generations.csv's last column, the checkpoint) and the
+    number of workers (run.json's threads)."""
     files = {}
     for path in sorted(directory.rglob("*")):
         name = str(path.relative_to(directory))
@@ -57,6 +59,8 @@ def run_files(directory: Path) -> dict[str, str]:
         text = path.read_text()
         if name == "generations.csv":
             text = "\n".join(line.rsplit(",", 1)[0] for line in text.splitlines())
+        if name == "run.json":
+            text = json.dumps({k: v for k, v in json.loads(text).items() if k != "threads"})
         files[name] = text
     return files
 
@@ -91,8 +95,9 @@ def test_validation_and_confirmation_run_on_the_workers_with_the_same_results(tm
     assert in_workers >= 2 * 4 * 3 * 2
     assert in_parent <= 2 * 16
 
-    gpfd.evolve(**common, threads=1, out=tmp_path / "one")
+    one = gpfd.evolve(**common, threads=1, out=tmp_path / "one")
     assert run_files(tmp_path / "one") == run_files(tmp_path / "two")
+    assert (one.info["threads"], two.info["threads"]) == (1, 2)  # The workers used.
 
 
 def test_assess_runs_on_the_workers_with_the_same_table(tmp_path):
