@@ -3,9 +3,10 @@
 ``__main__``: everything it runs comes over the TASKS pipe (gpfd._frames), pickled by cloudpickle.
 
 Frames in: first the parent's sys.path (a plain pickle), then one task per frame, cloudpickle of
-(function, args), the first being the pool's initializer. Frames out: one reply per task, ("ok", value) or ("error", pickled exception or None, its type's name, its
-text, the traceback). The worker ends when the TASKS pipe ends (exit 0), or when the parent ends it.
-SIGINT is ignored: Ctrl-C is the parent's to handle (it ends its workers).
+(function, args), the first being the pool's initializer. Frames out: one reply per task,
+("ok", value) or ("error", pickled exception or None, its type's name, its text, the traceback).
+The worker ends when the TASKS pipe ends (exit 0), or when the parent ends it. SIGINT is
+ignored: Ctrl-C is the parent's to handle (it ends its workers).
 """
 
 from __future__ import annotations
@@ -16,12 +17,14 @@ import signal
 import sys
 import traceback
 
+import cloudpickle
+
+from gpfd import _frames
+
 
 def _error_reply(error: BaseException) -> tuple:
     text = "".join(traceback.format_exception(type(error), error, error.__traceback__))
     try:
-        import cloudpickle
-
         pickled: bytes | None = cloudpickle.dumps(error)
     except Exception:  # An exception that does not pickle travels as its name and text.
         pickled = None
@@ -30,20 +33,20 @@ def _error_reply(error: BaseException) -> tuple:
 
 def _reply(results: int, reply: tuple) -> bool:
     """Sends `reply`; False when the parent is gone."""
-    from gpfd import _frames
-
     try:
-        _frames.send(results, reply)
+        try:
+            _frames.send(results, reply)
+        except OSError:
+            raise
+        except Exception as e:  # The value does not pickle (nothing was sent): say so instead.
+            error = TypeError(f"the task's result does not pickle: {e}")
+            _frames.send(results, _error_reply(error))
     except OSError:
         return False
-    except Exception as e:  # The value does not pickle: say so instead.
-        _frames.send(results, _error_reply(TypeError(f"the task's result does not pickle: {e}")))
     return True
 
 
 def _call(payload: bytes) -> tuple:
-    import cloudpickle
-
     try:
         function, args = cloudpickle.loads(payload)
         return ("ok", function(*args))
@@ -54,8 +57,6 @@ def _call(payload: bytes) -> tuple:
 def main(argv: list[str]) -> int:
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     tasks, results = int(argv[1]), int(argv[2])
-    from gpfd import _frames
-
     try:
         sys.path[:] = pickle.loads(_frames.receive_bytes(tasks))
     except EOFError:

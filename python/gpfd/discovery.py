@@ -150,21 +150,26 @@ def _resume_call(env: Any, env_kwargs: dict | None) -> str:
 
 class _InterruptWatch:
     """Notes Ctrl-C (SIGINT) while a run goes, so that an interruption is known as one whatever
-    the error it surfaces as; Python's own handler still raises KeyboardInterrupt. Only in the
-    main thread, and only where SIGINT has Python's default handler."""
+    error it surfaces as (an environment's wrapper may turn KeyboardInterrupt into its own error).
+    The handler in place (Python's, which raises KeyboardInterrupt, or a notebook kernel's) still
+    runs. Only in the main thread, and only where SIGINT has a Python handler."""
 
     def __init__(self) -> None:
         self.seen = False
         self._previous: Any = None
 
-    def _handler(self, signum: int, frame: Any) -> None:
-        self.seen = True
-        signal.default_int_handler(signum, frame)
-
     def __enter__(self) -> _InterruptWatch:
-        if threading.current_thread() is threading.main_thread():
-            if signal.getsignal(signal.SIGINT) is signal.default_int_handler:
-                self._previous = signal.signal(signal.SIGINT, self._handler)
+        if threading.current_thread() is not threading.main_thread():
+            return self
+        previous = signal.getsignal(signal.SIGINT)
+        if callable(previous):
+
+            def handler(signum: int, frame: Any) -> Any:
+                self.seen = True
+                return previous(signum, frame)
+
+            signal.signal(signal.SIGINT, handler)
+            self._previous = previous
         return self
 
     def __exit__(self, *exc: Any) -> None:
@@ -220,7 +225,8 @@ def evolve(
         ``gpfd evolve`` prints, a line per generation and what the run returned; False: nothing.
         What stops a run is always said (gpfd.progress).
 
-    Ctrl-C stops the run at once and raises KeyboardInterrupt, its text saying how to continue: the run falls back to its last checkpoint (the end of the last complete generation;
+    Ctrl-C stops the run at once and raises KeyboardInterrupt, its text saying how to continue:
+    the run falls back to its last checkpoint (the end of the last complete generation;
     validation and confirmation start over), and resuming it gives the run an uninterrupted one
     gives. Interrupted in generation 0, before any checkpoint, a fresh run leaves no directory.
     """

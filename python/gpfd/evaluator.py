@@ -19,6 +19,7 @@ from collections.abc import Callable, Iterator
 from concurrent.futures import Executor
 from typing import Any
 
+import cloudpickle
 import gymnasium as gym
 
 from gpfd import _core, user_env, vector_source
@@ -119,6 +120,14 @@ class Evaluator:
 
     def _started(self) -> Executor:
         if self._executor is None:
+            try:
+                cloudpickle.dumps(self.factory)
+            except Exception as e:
+                raise TypeError(
+                    f"{self.name}: the environment's factory cannot be sent to the worker "
+                    f"processes: cloudpickle cannot pickle it ({type(e).__name__}: {e}); make it "
+                    "picklable, or use threads=1 to run in this process"
+                ) from e
             self._executor = self.make_executor(
                 self.workers, _init_worker, (self.name, self.factory)
             )

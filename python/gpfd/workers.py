@@ -14,6 +14,7 @@ gpfd.evaluator runs the discovery's work on such an executor.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import pickle
 import queue
@@ -113,10 +114,8 @@ class _Worker:
     def close(self) -> None:
         """Ends the task pipe (the worker exits when it next reads) and the result pipe."""
         for fd in (self.tasks, self.results):
-            try:
+            with contextlib.suppress(OSError):
                 os.close(fd)
-            except OSError:
-                pass
         self.tasks = self.results = -1
 
 
@@ -172,10 +171,8 @@ class WorkerPool(Executor):
 
     def _serve(self, worker: _Worker) -> None:
         """A thread per worker: the setup, then the queue's tasks one at a time until a None."""
-        try:
+        with contextlib.suppress(OSError):  # A worker gone: the call below says how it ended.
             _frames.send_bytes(worker.tasks, pickle.dumps(list(sys.path)))
-        except OSError:
-            pass  # The worker is gone: the call below says how it ended.
         try:
             reply = worker.call(self._setup)
         except WorkerError as e:
@@ -199,11 +196,10 @@ class WorkerPool(Executor):
                 continue
             try:
                 reply = worker.call(payload)
-            except WorkerError as e:
-                if self._terminating:
-                    e = WorkerError("the worker pool was terminated")
-                future.set_exception(e)
-                self._break(e)
+            except WorkerError as died:
+                error = WorkerError("the worker pool was terminated") if self._terminating else died
+                future.set_exception(error)
+                self._break(error)
                 return
             if reply[0] == "ok":
                 future.set_result(reply[1])
@@ -270,4 +266,3 @@ class WorkerPool(Executor):
         for worker in self._workers:
             worker.close()
             worker.process.wait()
-

@@ -133,7 +133,12 @@ def uninterrupted(tmp_path_factory):
 def interrupt(tmp_path: Path, stage: str, workers: int, env: str) -> tuple[int, str]:
     """Runs the script, sends Ctrl-C once the stage blocks, returns (exit code, stderr)."""
     process = python(
-        RUN, str(tmp_path), stage, str(workers), str(tmp_path / "run"), env,
+        RUN,
+        str(tmp_path),
+        stage,
+        str(workers),
+        str(tmp_path / "run"),
+        env,
         start_new_session=True,  # noqa: E131  Its own process group, as a terminal's job.
     )
     deadline = time.monotonic() + 300

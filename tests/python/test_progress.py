@@ -1,7 +1,7 @@
 """What gpfd.evolve shows while it runs (gpfd.progress): a progress bar by default on a terminal or
-in a notebook, only the verdict elsewhere, nothing with verbose=False, the command's text with verbose=True. No
-test depends on timing: what is checked is drawn at fixed points (a run's start, each generation,
-its end), never only by the half-second poll."""
+in a notebook, only the verdict elsewhere, nothing with verbose=False, the command's text with
+verbose=True. No test depends on timing: what is checked is drawn at fixed points (a run's start,
+each generation, its end), never only by the half-second poll."""
 
 import fcntl
 import io

@@ -4,11 +4,15 @@ worker that dies fails the pool at once, naming it, and is never restarted."""
 
 import os
 import signal
+import threading
 import time
 
 import pytest
 
+import gpfd
 from gpfd.workers import RemoteTraceback, WorkerError, WorkerPool
+from point_env import Point
+from test_user_env_workers import SMALL
 
 _SETUP: dict[str, int] = {}
 
@@ -101,3 +105,34 @@ def test_terminate_ends_running_tasks():
     with pytest.raises(WorkerError, match="terminated"):
         sleeping.result(timeout=60)
     assert pool._workers[0].process.returncode == -signal.SIGTERM
+
+
+class DiesInStep(Point):
+    """Point whose step ends its process, as a crashing simulator would, but in the process of
+    the test (which samples states with it)."""
+
+    def step(self, action):
+        if os.getpid() != int(os.environ["GPFD_TEST_PARENT"]):
+            os._exit(7)
+        return super().step(action)
+
+
+def test_a_run_whose_worker_dies_stops_at_once_naming_it_and_keeps_nothing(tmp_path, monkeypatch):
+    monkeypatch.setenv("GPFD_TEST_PARENT", str(os.getpid()))  # The workers inherit it.
+    with pytest.raises(WorkerError, match=r"gpfd worker \d \(pid \d+\) exited with code 7"):
+        gpfd.evolve(
+            env=DiesInStep, population=4, generations=1, set=SMALL, threads=2, out=tmp_path / "r"
+        )
+    assert not (tmp_path / "r").exists()
+
+
+def test_a_factory_that_does_not_pickle_is_a_clear_error_with_workers(tmp_path):
+    lock = threading.Lock()  # Held by the factory: no pickle.
+
+    def make():
+        with lock:
+            return Point()
+
+    with pytest.raises(TypeError, match="cannot be sent to the worker processes.*threads=1"):
+        gpfd.evolve(env=make, population=4, generations=1, threads=2, out=tmp_path / "r")
+    assert not (tmp_path / "r").exists()
