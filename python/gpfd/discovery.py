@@ -113,11 +113,12 @@ def _resumed_env(resume: str | os.PathLike, env: Any, env_kwargs: dict | None) -
             raise TypeError(f"the run in {resume} is on {stored}, not {env!r}")
         return None
     if env is None:
-        if stored.startswith("python:") or env_kwargs:
-            callable_name = stored.removeprefix("python:")
+        if env_kwargs:
+            raise TypeError("env_kwargs needs env=")
+        if stored.startswith("python:"):
             raise TypeError(
-                f"the run in {resume} is on {callable_name}, stepped in Python: give "
-                f"env= (the callable it was started with) to resume it"
+                f"the run in {resume} is on {stored.removeprefix('python:')}, stepped in Python: "
+                "give env= (the callable it was started with) to resume it"
             )
         env = stored
     name, factory = user_env.resolve(env, env_kwargs)
