@@ -34,7 +34,7 @@ import gpfd
 
 REPO = Path(__file__).resolve().parents[1]
 REPEATS = 3
-GROUP = gpfd.user_env.LOCKSTEP_GROUP  # As gpfd.evolve plays a generation's evaluations.
+GROUP = gpfd.evaluator.LOCKSTEP_GROUP  # As gpfd.evolve plays a generation's evaluations.
 
 
 def median_rate(measure):

@@ -30,8 +30,9 @@ from point_env import Point  # noqa: E402  (the tests' tiny environment)
 
 
 def live_children_seconds() -> float:
-    """CPU seconds of this process' live children and of the children they reaped: the
-    forkserver, whose children the worker processes are (RUSAGE_CHILDREN misses them)."""
+    """CPU seconds of this process' live children and of the children they reaped (gpfd's
+    workers are reaped when a run ends, into RUSAGE_CHILDREN; a process of children of its own,
+    such as a forkserver, is counted here while it lives)."""
     total = 0
     for stat in Path("/proc").glob("[0-9]*/stat"):
         try:
@@ -69,7 +70,7 @@ def measure(env, threads: int, config: str = "cartpole-quick") -> tuple[float, f
             out=Path(tmp) / "run",
         )
         wall = time.perf_counter() - wall
-        time.sleep(1.0)  # The forkserver reaps the workers, which have exited, meanwhile.
+        time.sleep(1.0)  # Any child's own children are reaped meanwhile.
         cpu, own = cpu_seconds() - cpu, own_seconds() - own
         return wall, cpu, own, run.best.to_text()
 

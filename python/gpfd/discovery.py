@@ -8,10 +8,13 @@
 from __future__ import annotations
 
 import csv
+import functools
 import json
 import math
 import os
+import signal
 import sys
+import threading
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -21,6 +24,7 @@ import numpy as np
 
 from gpfd import _core, progress, user_env
 from gpfd._core import FeatureSet
+from gpfd.evaluator import Evaluator
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -78,9 +82,7 @@ def _overrides(settings: Mapping[str, Any] | Iterable[str] | None) -> list[str]:
     return [str(s) for s in settings]
 
 
-def _env_overrides(
-    env: Any, env_kwargs: dict | None
-) -> tuple[list[str], user_env.Evaluator | None]:
+def _env_overrides(env: Any, env_kwargs: dict | None) -> tuple[list[str], Evaluator | None]:
     """The overrides that select `env`, and for an environment stepped in Python its evaluator
     (not yet started; one worker until told)."""
     if env is None:
@@ -96,7 +98,84 @@ def _env_overrides(
         return [f"env.name={_toml_value(env)}"], None
     name, factory = user_env.resolve(env, env_kwargs)
     user_env.register(name, factory)
-    return [f"env.name={_toml_value(name)}", "env.params={}"], user_env.Evaluator(name, factory, 1)
+    return [f"env.name={_toml_value(name)}", "env.params={}"], Evaluator(name, factory, 1)
+
+
+def _resumed_env(resume: str | os.PathLike, env: Any, env_kwargs: dict | None) -> Evaluator | None:
+    """The evaluator of the run in `resume` where it is on an environment stepped in Python: of
+    `env` (and `env_kwargs`) when given, else of its Gymnasium id or EnvPool task as stored."""
+    config = Path(resume, "config.toml")
+    if not config.is_file():
+        return None  # The C++ side says what is missing.
+    stored = tomllib.loads(config.read_text())["env"]["name"]
+    if user_env.is_builtin(stored):
+        if env is not None and env != stored:
+            raise TypeError(f"the run in {resume} is on {stored}, not {env!r}")
+        return None
+    if env is None:
+        if env_kwargs:
+            raise TypeError("env_kwargs needs env=")
+        if stored.startswith("python:"):
+            raise TypeError(
+                f"the run in {resume} is on {stored.removeprefix('python:')}, stepped in Python: "
+                "give env= (the callable it was started with) to resume it"
+            )
+        env = stored
+    name, factory = user_env.resolve(env, env_kwargs)
+    if name != stored and not stored.startswith("python:"):
+        raise TypeError(f"the run in {resume} is on {stored}, not {name}")
+    user_env.register(stored, factory)
+    return Evaluator(stored, factory, 1)
+
+
+def _resume_call(env: Any, env_kwargs: dict | None) -> str:
+    """How to resume a run of gpfd.evolve(env=env, env_kwargs=...), with {} for its directory
+    (a format string of fmt)."""
+    parts = []
+    if env is not None and not (isinstance(env, str) and user_env.is_builtin(env)):
+        if isinstance(env, str):
+            parts.append(f"env={env!r}")
+        else:
+            name = getattr(env, "__qualname__", "")
+            if isinstance(env, functools.partial) or not name.isidentifier():
+                name = "..."  # A lambda, a partial, an instance: named by no expression here.
+            parts.append(f"env={name}")
+        if env_kwargs:
+            parts.append(f"env_kwargs={env_kwargs!r}")
+    tail = "".join(", " + part for part in parts).replace("{", "{{").replace("}", "}}")
+    text = 'gpfd.evolve(resume="{}"' + tail + ")"
+    if "env=..." in text:
+        text += " (env= as given to this run)"
+    return text
+
+
+class _InterruptWatch:
+    """Notes Ctrl-C (SIGINT) while a run goes, so that an interruption is known as one whatever
+    error it surfaces as (an environment's wrapper may turn KeyboardInterrupt into its own error).
+    The handler in place (Python's, which raises KeyboardInterrupt, or a notebook kernel's) still
+    runs. Only in the main thread, and only where SIGINT has a Python handler."""
+
+    def __init__(self) -> None:
+        self.seen = False
+        self._previous: Any = None
+
+    def __enter__(self) -> _InterruptWatch:
+        if threading.current_thread() is not threading.main_thread():
+            return self
+        previous = signal.getsignal(signal.SIGINT)
+        if callable(previous):
+
+            def handler(signum: int, frame: Any) -> Any:
+                self.seen = True
+                return previous(signum, frame)
+
+            signal.signal(signal.SIGINT, handler)
+            self._previous = previous
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        if self._previous is not None:
+            signal.signal(signal.SIGINT, self._previous)
 
 
 def evolve(
@@ -138,38 +217,40 @@ def evolve(
         (generation, best, mean, median, mean_size, mean_features, evaluations, cache_hits,
         seconds, best_features); a true return value stops the run there.
     resume: continue the run in this directory (with its stored config; only ``generations`` may
-        extend it; give ``env`` again for an environment stepped in Python).
+        extend it, ``threads`` may change). A run on an environment stepped in Python needs
+        ``env`` (and ``env_kwargs``) again where it was a callable; a Gymnasium id or EnvPool
+        task is found from the stored config.
     verbose: None (default): a progress bar (generation, best GP fitness, ETA; then validation
-        and confirmation) when stderr is a terminal or this runs in a Jupyter notebook, nothing
-        otherwise; True: print what ``gpfd evolve`` prints, a line per generation and what the
-        run returned; False: nothing. What stops a run is always said (gpfd.progress).
+        and confirmation) when stderr is a terminal or this runs in a Jupyter notebook, otherwise
+        only the run's verdict, one line (as ``run.best.meta`` holds it); True: print what
+        ``gpfd evolve`` prints, a line per generation and what the run returned; False: nothing.
+        What stops a run is always said (gpfd.progress).
 
-    Ctrl-C stops the run at the end of the running generation, after its checkpoint.
+    Ctrl-C stops the run at once and raises KeyboardInterrupt, its text saying how to continue:
+    the run falls back to its last checkpoint (the end of the last complete generation;
+    validation and confirmation start over), and resuming it gives the run an uninterrupted one
+    gives. Interrupted in generation 0, before any checkpoint, a fresh run leaves no directory.
     """
-    overrides, evaluator = _env_overrides(env, env_kwargs)
+    threads = _whole("threads", threads, 0)
+    if generations is not None:
+        generations = _whole("generations", generations, 0)
     out_name = ""
-    if evaluator is not None:
-        out_name = user_env.run_name(evaluator.name)
-        if config is None:
-            config = user_env.DEFAULT_CONFIG
     if resume is not None:
         if seed is not None or population is not None or set is not None:
             raise TypeError("resume continues with the stored config; only generations may change")
-        stored = tomllib.loads(Path(resume, "config.toml").read_text())["env"]["name"]
-        if not user_env.is_builtin(stored):
-            if evaluator is None:
-                raise TypeError(f"the run in {resume} is on {stored}: give env= to resume it")
-            user_env.register(stored, evaluator.factory)
-            evaluator.name = stored
+        overrides: list[str] = []
+        evaluator = _resumed_env(resume, env, env_kwargs)
     else:
+        overrides, evaluator = _env_overrides(env, env_kwargs)
+        if evaluator is not None:
+            out_name = user_env.run_name(evaluator.name)
+            if config is None:
+                config = user_env.DEFAULT_CONFIG
         if seed is not None:
             overrides.append(f"seed={_whole('seed', seed, 0)}")
         if population is not None:
             overrides.append(f"gp.population={_whole('population', population, 1)}")
         overrides += _overrides(set)
-    threads = _whole("threads", threads, 0)
-    if generations is not None:
-        generations = _whole("generations", generations, 0)
     if evaluator is not None:
         evaluator.workers = threads if threads > 0 else (os.cpu_count() or 1)
 
@@ -180,25 +261,31 @@ def evolve(
             bar.generation(stats)
         return bool(callback(stats)) if callback is not None else False
 
-    try:
-        directory, finished = _core.evolve(
-            "" if config is None else os.fspath(config),
-            overrides,
-            None if out is None else os.fspath(out),
-            bool(force),
-            "" if resume is None else os.fspath(resume),
-            threads,
-            generations,
-            None if runs is None else _whole("runs", runs, 1),
-            on_generation,
-            evaluator,
-            bool(verbose),
-            bar,
-            out_name,
-        )
-    finally:
-        if evaluator is not None:
-            evaluator.close()
+    with _InterruptWatch() as watch:
+        try:
+            directory, finished, interruption = _core.evolve(
+                "" if config is None else os.fspath(config),
+                overrides,
+                None if out is None else os.fspath(out),
+                bool(force),
+                "" if resume is None else os.fspath(resume),
+                threads,
+                generations,
+                None if runs is None else _whole("runs", runs, 1),
+                on_generation,
+                evaluator,
+                verbose,
+                bar,
+                out_name,
+                _resume_call(env, env_kwargs),
+                lambda: watch.seen,
+            )
+        finally:
+            if evaluator is not None:
+                evaluator.close()
+    if interruption:
+        # KeyboardInterrupt itself, not a subclass: Python then ends a script by SIGINT (130).
+        raise KeyboardInterrupt(interruption) from None
     run = load_run(directory)
     run.finished = finished  # A resumed run may have been extended past its config.
     return run

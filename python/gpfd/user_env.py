@@ -6,21 +6,18 @@ flattened, is the state: variables x0, x1, ...) and a Box (finite bounds) or Dis
 Every episode starts with ``reset(seed=s)``, s drawn from the trial's own stream, so a run is
 reproducible when the environment is deterministic given its seed. Every stage runs in worker
 processes (one per thread asked for), since Python steps one environment at a time per process:
-the GP's fitness evaluations, and the learning runs of validation, confirmation and assessment.
-Each worker makes its own environments.
+the GP's fitness evaluations, and the learning runs of validation, confirmation and assessment
+(gpfd.evaluator, on gpfd.workers' pool). Each worker makes its own environments.
 """
 
 from __future__ import annotations
 
 import functools
 import math
-import multiprocessing
-import os
 import re
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-import cloudpickle
 import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
@@ -30,8 +27,6 @@ from gpfd.errors import EnvError  # Also gpfd.user_env.EnvError, as before.
 from gpfd.registry import is_builtin  # Also gpfd.user_env.is_builtin, as before.
 
 if TYPE_CHECKING:
-    from multiprocessing.pool import Pool
-
     from gpfd.protocol import AdapterProtocol
 
 #: The shipped config (configs/user-env.toml) of gpfd.evolve and gpfd.assess on an environment
@@ -196,101 +191,3 @@ if TYPE_CHECKING:
 
     def _conforms(adapter: Adapter) -> AdapterProtocol:
         return adapter  # mypy: Adapter is what C++ drives.
-
-
-def _init_worker(name: str, payload: bytes) -> None:
-    register(name, cloudpickle.loads(payload))
-
-
-def _fitness_group_task(task: tuple[str, list[tuple[bytes, int]]]) -> list[float]:
-    return _core.trial_fitness_group(*task)
-
-
-def _runs_group_task(task: tuple[str, int, list[tuple[tuple, list[int]]]]) -> list[list]:
-    return _core.train_runs_group(*task)
-
-
-# Fitness evaluations played together in one vector environment (a lockstep group) where the
-# environment has a vector form: 30 lanes each for cartpole-quick's 3 trials of 10 episodes.
-LOCKSTEP_GROUP = 16
-
-
-def _lockstep_groups(tasks: list) -> list[list]:
-    """Consecutive groups of at most LOCKSTEP_GROUP tasks, as equal as may be, an even number of
-    them (two workers share them evenly; 21 evaluations: 11 and 10, not 16 and 5). Their number
-    follows from the tasks alone, never from the workers, so that a vector form seeded as a whole
-    (one seed mixed from a group's lanes) gives the same run for any number of workers."""
-    n = len(tasks)
-    count = -(-n // LOCKSTEP_GROUP)
-    if count % 2 == 1 and n > 1:
-        count += 1
-    groups, start = [], 0
-    for i in range(count):
-        size = n // count + (1 if i < n % count else 0)
-        groups.append(tasks[start : start + size])
-        start += size
-    return groups
-
-
-class Evaluator:
-    """evaluate(config_text, [(genome, seed), ...]) for gpfd's discovery: run::trialFitness of
-    each genome; and run_trials for the learning runs of validation, confirmation and assessment.
-    In this process (workers == 1) or in a pool of worker processes. A fitness depends on its
-    genome and seed only, a curve on its features, budget and seed, so any number of workers
-    gives the same run."""
-
-    def __init__(self, name: str, factory: Callable[[], gym.Env], workers: int):
-        self.name = name
-        self.factory = factory
-        self.workers = workers if workers > 0 else (os.cpu_count() or 1)
-        self._pool: Pool | None = None
-
-    def __call__(self, config_text: str, tasks: list[tuple[bytes, int]]) -> list[float]:
-        groups = [(config_text, group) for group in self._groups(tasks)]
-        return [fitness for done in self._map(_fitness_group_task, groups) for fitness in done]
-
-    @property
-    def lockstep(self) -> bool:
-        """Whether the environment has a vector form, whose calls go in lockstep groups
-        (_lockstep_groups), each group's episodes in one vector environment
-        (python/src/lockstep_group.hpp)."""
-        from gpfd.vector_source import has_vector_form
-
-        return has_vector_form(self.name)
-
-    def _groups(self, tasks: list) -> list[list]:
-        """Lockstep groups where the environment has a vector form, else one task each."""
-        return _lockstep_groups(tasks) if self.lockstep else [[task] for task in tasks]
-
-    def run_trials(
-        self, config_text: str, budget: int, tasks: list[tuple[tuple, list[int]]]
-    ) -> Iterator[list]:
-        """The curves of each task (a feature set and the seeds of its runs) under the config
-        and budget (run::LearningTask::Budget), in task order, as each is done
-        (python/src/trial_runner.cpp)."""
-        groups = [(config_text, budget, group) for group in self._groups(tasks)]
-        return (curves for done in self._map(_runs_group_task, groups) for curves in done)
-
-    def _map(self, function: Callable[[Any], Any], work: list) -> Iterator:
-        """function over work, in order, as each is done: here, or on the workers."""
-        if self.workers == 1:
-            return map(function, work)
-        return self._started().imap(function, work, chunksize=1)
-
-    def _started(self) -> Pool:
-        if self._pool is None:
-            # forkserver: workers do not inherit this process' threads (oneTBB's) or state.
-            method = (
-                "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() else "spawn"
-            )
-            context = multiprocessing.get_context(method)
-            self._pool = context.Pool(
-                self.workers, _init_worker, (self.name, cloudpickle.dumps(self.factory))
-            )
-        return self._pool
-
-    def close(self) -> None:
-        if self._pool is not None:
-            self._pool.close()
-            self._pool.join()
-            self._pool = None

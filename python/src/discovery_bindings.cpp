@@ -12,6 +12,7 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <filesystem>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -110,27 +111,41 @@ service::TextSink pythonStream(const char* name) {
   };
 }
 
+// Where a run stopped by Ctrl-C was (PythonProgress::runStopped), for the text of gpfd.evolve's
+// KeyboardInterrupt.
+struct Interruption {
+  std::string dir, resumeDir, label;
+  std::optional<int> lastGeneration;  // The last complete generation (checkpointed), if any.
+  run::RunStage::Kind stage = run::RunStage::Generations;
+};
+
 // gpfd.evolve's view of a run: the per-generation callback (a true return value stops the run),
-// Ctrl-C checked after each generation, the command's text when verbose (what stops a run is
-// always said, on stderr), and a progress display (`observer`, gpfd.progress.EvolveBar) when one is
-// given: it is told when a run starts and ends and, every half second from a thread of its own,
-// the running stage; the command's header and outcome lines are printed around it.
+// Ctrl-C checked after each generation, the command's text when verbose, only the verdict when
+// `verbose` is None without a display (what stops a run is always said, on stderr), and a
+// progress display (`observer`, gpfd.progress.EvolveBar) when one is given: it is told when a run
+// starts and ends and, every half second from a thread of its own, the running stage; the
+// command's header and outcome lines are printed around it. A run that an interruption stops
+// (KeyboardInterrupt, or any error while `interrupted()` is true: Ctrl-C came) says nothing: its
+// Interruption is kept for gpfd.evolve's KeyboardInterrupt.
 class PythonProgress final : public service::EvolveProgress {
  public:
-  PythonProgress(nb::object onGeneration, bool verbose, nb::object observer,
-                 std::atomic<bool>& stop)
+  PythonProgress(nb::object onGeneration, std::optional<bool> verbose, nb::object observer,
+                 const std::string& resumeCommand, nb::object interrupted, std::atomic<bool>& stop)
       : onGeneration_(std::move(onGeneration)),
         observer_(std::move(observer)),
+        interrupted_(std::move(interrupted)),
         text_({.out = pythonStream("stdout"),
                .err = pythonStream("stderr"),
                .terminal = false,
-               .quiet = !verbose && observer_.is_none(),
-               .resumeCommand = "gpfd.evolve(resume=\"{}\")"}),
+               .quiet = verbose == false,
+               .outcomeOnly = !verbose.has_value() && observer_.is_none(),
+               .resumeCommand = resumeCommand}),
         stop_(stop) {}
   ~PythonProgress() override { stopPolling(); }
 
   void runStarted(const run::Discovery& d, const std::string& dir,
                   const std::string& label) override {
+    label_ = label;
     variables_ = stateNamesOf(d.config());
     text_.runStarted(d, dir, label);
     if (observer_.is_none()) return;
@@ -160,6 +175,12 @@ class PythonProgress final : public service::EvolveProgress {
   void runStopped(const run::Discovery& d, const std::string& dir, const std::string& resumeDir,
                   bool error) override {
     runEnded(false);
+    if (error && isInterruption()) {
+      const auto& history = d.history();
+      interruption_ = Interruption{dir, resumeDir, label_, std::nullopt, d.stage().kind};
+      if (!history.empty()) interruption_->lastGeneration = history.back().generation;
+      return;
+    }
     text_.runStopped(d, dir, resumeDir, error);
   }
   void runFinished(const run::RunOutcome& o, const std::string& dir,
@@ -173,6 +194,22 @@ class PythonProgress final : public service::EvolveProgress {
   void alreadyComplete(const std::string& dir, int generations) override {
     text_.alreadyComplete(dir, generations);
   }
+
+  // Whether the error being handled is an interruption: KeyboardInterrupt, or any error after
+  // Ctrl-C (which may surface as another). Call within a catch block, without the GIL.
+  bool isInterruption() {
+    nb::gil_scoped_acquire gil;
+    try {
+      throw;
+    } catch (nb::python_error& e) {
+      if (e.matches(PyExc_KeyboardInterrupt)) return true;
+    } catch (...) {
+    }
+    return !interrupted_.is_none() && nb::cast<bool>(interrupted_());
+  }
+
+  // The run stopped by an interruption, if one was.
+  const std::optional<Interruption>& interruption() const { return interruption_; }
 
   // Ends the polling thread; call without the GIL, which the thread takes.
   void stopPolling() {
@@ -224,18 +261,50 @@ class PythonProgress final : public service::EvolveProgress {
 
   nb::object onGeneration_;
   nb::object observer_;
+  nb::object interrupted_;
   service::EvolveText text_;
+  std::string label_;  // Of the running run.
+  std::optional<Interruption> interruption_;
   std::atomic<bool>& stop_;
   std::vector<std::string> variables_;
   const run::Discovery* discovery_ = nullptr;  // The running one (runStarted to its end).
   std::jthread poller_;
 };
 
+// The text of gpfd.evolve's KeyboardInterrupt: where the run was, and how to continue it (or that
+// nothing was kept).
+std::string interruptionText(const Interruption& i, const std::string& resumeCommand) {
+  namespace fs = std::filesystem;
+  std::string where;
+  if (i.stage == run::RunStage::Generations) {
+    where = fmt::format("generation {}", i.lastGeneration ? *i.lastGeneration + 1 : 0);
+  } else {
+    where = fmt::format("{} (after generation {})", run::stageName(i.stage),
+                        i.lastGeneration.value_or(-1));
+  }
+  std::error_code ec;
+  if (!fs::exists(i.dir + "/config.toml", ec)) {
+    return fmt::format(
+        "gpfd.evolve interrupted in {}{}, before its first checkpoint: nothing is "
+        "kept; run it again to start over",
+        i.label, where);
+  }
+  const std::string back =
+      i.lastGeneration
+          ? fmt::format("continues from the checkpoint of generation {}", *i.lastGeneration)
+          : std::string("starts over (no generation was complete)");
+  return fmt::format("gpfd.evolve interrupted in {}{}; the run {} with: {}", i.label, where, back,
+                     fmt::format(fmt::runtime(resumeCommand), i.resumeDir));
+}
+
+// Returns (results dir, finished, interruption): the text of gpfd.evolve's KeyboardInterrupt,
+// empty unless Ctrl-C stopped the run (the error it surfaced as is dropped: the caller raises it).
 nb::tuple evolve(const std::string& config, const std::vector<std::string>& overrides,
                  std::optional<std::string> out, bool force, const std::string& resume, int threads,
                  std::optional<int> generations, std::optional<int> runs, nb::object onGeneration,
-                 nb::object evaluate, bool verbose, nb::object observer,
-                 const std::string& outName) {
+                 nb::object evaluate, std::optional<bool> verbose, nb::object observer,
+                 const std::string& outName, const std::string& resumeCommand,
+                 nb::object interrupted) {
   service::EvolveRequest request;
   request.config = config;
   request.overrides = overrides;
@@ -250,14 +319,16 @@ nb::tuple evolve(const std::string& config, const std::vector<std::string>& over
       return std::make_unique<PythonBatchEvaluator>(evaluate, setup.configText, setup.onEvaluated);
     };
     // An environment stepped in Python: the GP's evaluations and the validation and confirmation
-    // trials all go to the evaluator's worker processes. Threads of this process would only
-    // queue on the GIL (with two, a run took 4x as long: each step handed the GIL over).
+    // trials all go to the evaluator's worker processes (threads of this process would only queue
+    // on the GIL); run.json records how many.
     request.trialRunner = pythonTrialRunner(evaluate);
-    request.threads = 1;
+    request.threads = nb::cast<int>(evaluate.attr("workers"));
   }
   std::atomic<bool> stop{false};
-  PythonProgress progress(std::move(onGeneration), verbose, std::move(observer), stop);
+  PythonProgress progress(std::move(onGeneration), verbose, std::move(observer), resumeCommand,
+                          interrupted, stop);
   service::EvolveResult result;
+  std::optional<Interruption> interruption;
   {
     nb::gil_scoped_release release;
     // The polling thread ends before the GIL is taken back, whatever happens.
@@ -265,9 +336,24 @@ nb::tuple evolve(const std::string& config, const std::vector<std::string>& over
       PythonProgress& p;
       ~StopPolling() { p.stopPolling(); }
     } stopPolling{progress};
-    result = service::evolve(request, progress, stop);
+    try {
+      result = service::evolve(request, progress, stop);
+    } catch (...) {
+      interruption = progress.interruption();
+      // Ctrl-C before any run started (the config read, the states sampled): nothing was kept.
+      if (!interruption && progress.isInterruption()) interruption = Interruption{};
+      if (!interruption) throw;
+    }
   }
-  return nb::make_tuple(result.dir, result.finished);
+  if (interruption) {
+    const std::string text = interruption->dir.empty()
+                                 ? std::string(
+                                       "gpfd.evolve interrupted before its first "
+                                       "generation: nothing is kept")
+                                 : interruptionText(*interruption, resumeCommand);
+    return nb::make_tuple(interruption->resumeDir, false, text);
+  }
+  return nb::make_tuple(result.dir, result.finished, std::string());
 }
 
 // run::trialFitness of each packed genome with Rng(seed), all in one lockstep group
@@ -367,9 +453,13 @@ void bindDiscovery(nb::module_& m) {
   m.def("evolve", &evolve, nb::arg("config"), nb::arg("overrides"), nb::arg("out").none(),
         nb::arg("force"), nb::arg("resume"), nb::arg("threads"), nb::arg("generations").none(),
         nb::arg("runs").none(), nb::arg("on_generation").none(), nb::arg("evaluate").none(),
-        nb::arg("verbose"), nb::arg("observer").none() = nb::none(), nb::arg("out_name") = "",
+        nb::arg("verbose").none(), nb::arg("observer").none() = nb::none(),
+        nb::arg("out_name") = "", nb::arg("resume_command") = "gpfd.evolve(resume=\"{}\")",
+        nb::arg("interrupted").none() = nb::none(),
         "Runs (or resumes) discovery through the service layer, like `gpfd evolve`; returns "
-        "(results dir, finished).");
+        "(results dir, finished, interruption: the text of the KeyboardInterrupt to raise when "
+        "Ctrl-C stopped "
+        "it, else empty).");
   m.def("trial_fitness_group", &trialFitnessGroupOf, nb::arg("config_text"), nb::arg("tasks"),
         "run::trialFitness of each (packed genome, seed), played in one lockstep group: the "
         "evaluations' episodes share one vector environment (the worker processes' task).");

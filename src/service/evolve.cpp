@@ -157,7 +157,13 @@ EvolveResult evolve(const EvolveRequest& request, EvolveProgress& progress,
       throw;
     }
     EvolveResult result{options.outDir, false, {}};
-    result.finished = runOne(*discovery, options.outDir, "", 1, options.outDir, progress, stop);
+    try {
+      result.finished = runOne(*discovery, options.outDir, "", 1, options.outDir, progress, stop);
+    } catch (...) {
+      // Stopped (an error, an interruption) before its first generation ended: nothing to keep.
+      if (discovery->history().empty()) lock.removeCreatedDirectory();
+      throw;
+    }
     if (result.finished) result.outcomes.push_back(run::outcomeOf(*discovery, 1));
     return result;
   }

@@ -35,7 +35,7 @@ EvolveText::~EvolveText() { stopStatus(); }
 void EvolveText::runStarted(const run::Discovery& discovery, const std::string& dir,
                             const std::string& label) {
   total_ = 0.0;
-  if (o_.quiet) return;
+  if (o_.quiet || o_.outcomeOnly) return;
   const auto& config = discovery.config();
   o_.out(fmt::format(
       "{}gpfd evolve: {} ({} on {}), population {}, generations {}, seed {}, results in {}\n",
@@ -79,7 +79,7 @@ void EvolveText::stopStatus() {
 void EvolveText::generationDone(const run::Discovery& discovery, const run::GenerationRecord& r,
                                 const std::string& label) {
   total_ += r.seconds;
-  if (o_.quiet) return;
+  if (o_.quiet || o_.outcomeOnly) return;
   const int remaining = discovery.config().gp.generations - 1 - r.generation;
   const double perGeneration = total_ / static_cast<double>(r.generation + 1);
   o_.out(fmt::format(

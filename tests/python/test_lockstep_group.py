@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import gpfd
-from gpfd import _core, user_env
+from gpfd import _core, evaluator
 from test_vector_source import MODES, TINY, Toy, ToyVector, toy_vector
 
 
@@ -53,13 +53,13 @@ SMALL_VALIDATION: dict[str, Any] = {
 def recorded_tasks(env, monkeypatch, tmp_path, **kwargs) -> tuple[str, list[tuple[bytes, int]]]:
     """The config text and (genome, seed) tasks of the first generation of a small run."""
     calls: list[tuple[str, list]] = []
-    original = user_env.Evaluator.__call__
+    original = evaluator.Evaluator.__call__
 
     def record(self, config_text, tasks):
         calls.append((config_text, list(tasks)))
         return original(self, config_text, tasks)
 
-    monkeypatch.setattr(user_env.Evaluator, "__call__", record)
+    monkeypatch.setattr(evaluator.Evaluator, "__call__", record)
     gpfd.evolve(
         env=env,
         seed=5,

@@ -1,7 +1,7 @@
 """What gpfd.evolve shows while it runs (gpfd.progress): a progress bar by default on a terminal or
-in a notebook, nothing elsewhere or with verbose=False, the command's text with verbose=True. No
-test depends on timing: what is checked is drawn at fixed points (a run's start, each generation,
-its end), never only by the half-second poll."""
+in a notebook, only the verdict elsewhere, nothing with verbose=False, the command's text with
+verbose=True. No test depends on timing: what is checked is drawn at fixed points (a run's start,
+each generation, its end), never only by the half-second poll."""
 
 import fcntl
 import io
@@ -53,9 +53,15 @@ def test_the_bar_is_shown_only_by_default_on_a_terminal_or_in_a_notebook(monkeyp
     assert not progress.in_notebook()
 
 
-def test_nothing_is_printed_without_a_terminal(tmp_path, capfd):
+def test_without_a_terminal_only_the_verdict_is_printed(tmp_path, capfd):
     run = gpfd.evolve(**TINY, out=tmp_path / "run")  # pytest's streams are not terminals
-    assert run.finished
+    assert run.finished and run.best is not None
+    out, err = capfd.readouterr()
+    assert err == "" and out.count("\n") == 1, out
+    # The verdict as best.features' meta holds it: the confirmed (or selection) score.
+    assert out.startswith(("confirmed: ", "selection: ", "no discovered feature set")), out
+    assert f"{tmp_path / 'run'}/best.features" in out, out
+    gpfd.evolve(**TINY, out=tmp_path / "quiet", verbose=False)
     assert capfd.readouterr() == ("", "")
 
 

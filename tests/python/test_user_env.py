@@ -142,6 +142,7 @@ BAD_ENVS = [
 def test_a_misbehaving_environment_is_a_clear_error(tmp_path, threads, env, message):
     with pytest.raises(gpfd.EnvError, match=message):
         gpfd.evolve(env=env, **SHORT, threads=threads, out=tmp_path / "r")
+    assert not (tmp_path / "r").exists()  # Failed in generation 0: nothing to keep.
 
 
 def test_non_box_observations_are_refused(tmp_path):

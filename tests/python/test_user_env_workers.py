@@ -2,6 +2,7 @@
 confirmation, assessment), with the same results for any number of them; the config and the
 results directory a run on it gets; an id registered under ``if __name__ == "__main__":``."""
 
+import json
 import os
 import subprocess
 import sys
@@ -9,7 +10,9 @@ import textwrap
 from pathlib import Path
 from typing import Any
 
+import gymnasium as gym
 import numpy as np
+import pytest
 
 import gpfd
 from gpfd import user_env
@@ -48,7 +51,8 @@ def resets(directory: Path) -> dict[int, int]:
 
 
 def run_files(directory: Path) -> dict[str, str]:
-    """A run's results, but timings (generations.csv's last column, the checkpoint)."""
+    """A run's results, but timings (generations.csv's last column, the checkpoint) and the
+    number of workers (run.json's threads)."""
     files = {}
     for path in sorted(directory.rglob("*")):
         name = str(path.relative_to(directory))
@@ -57,6 +61,8 @@ def run_files(directory: Path) -> dict[str, str]:
         text = path.read_text()
         if name == "generations.csv":
             text = "\n".join(line.rsplit(",", 1)[0] for line in text.splitlines())
+        if name == "run.json":
+            text = json.dumps({k: v for k, v in json.loads(text).items() if k != "threads"})
         files[name] = text
     return files
 
@@ -91,8 +97,9 @@ def test_validation_and_confirmation_run_on_the_workers_with_the_same_results(tm
     assert in_workers >= 2 * 4 * 3 * 2
     assert in_parent <= 2 * 16
 
-    gpfd.evolve(**common, threads=1, out=tmp_path / "one")
+    one = gpfd.evolve(**common, threads=1, out=tmp_path / "one")
     assert run_files(tmp_path / "one") == run_files(tmp_path / "two")
+    assert (one.info["threads"], two.info["threads"]) == (1, 2)  # The workers used.
 
 
 def test_assess_runs_on_the_workers_with_the_same_table(tmp_path):
@@ -181,3 +188,34 @@ def test_an_id_registered_under_the_main_guard_reaches_the_workers(tmp_path):
     )
     assert done.returncode == 0, done.stderr
     assert "finished True" in done.stdout
+
+
+def test_a_run_on_a_user_env_resumes_with_the_env_as_stored_or_given(tmp_path):
+    gym.register("gpfd-test/Point-v0", entry_point=Point, kwargs={"steps": 10})
+    common: dict[str, Any] = {"seed": 2, "population": 4, "set": SMALL, "threads": 1}
+    by_id = gpfd.evolve(env="gpfd-test/Point-v0", generations=1, out=tmp_path / "id", **common)
+    assert by_id.finished and by_id.generations == 1
+    # A Gymnasium id is found from the stored config; `env` may be given again.
+    longer = gpfd.evolve(resume=tmp_path / "id", generations=2, threads=2)
+    assert longer.finished and longer.generations == 2
+    again = gpfd.evolve(resume=tmp_path / "id", env="gpfd-test/Point-v0", generations=3)
+    assert again.generations == 3
+    with pytest.raises(TypeError, match=r"is on gpfd-test/Point-v0, not CartPole-v1"):
+        gpfd.evolve(resume=tmp_path / "id", env="CartPole-v1", generations=4)
+    # A callable must be given again: nothing stored names it.
+    gpfd.evolve(
+        env=CountedPoint,
+        env_kwargs={"directory": str(tmp_path)},
+        generations=1,
+        out=tmp_path / "callable",
+        **common,
+    )
+    with pytest.raises(TypeError, match=r"is on CountedPoint, stepped in Python: give env="):
+        gpfd.evolve(resume=tmp_path / "callable", generations=2)
+    resumed = gpfd.evolve(
+        resume=tmp_path / "callable",
+        env=CountedPoint,
+        env_kwargs={"directory": str(tmp_path)},
+        generations=2,
+    )
+    assert resumed.finished and resumed.generations == 2

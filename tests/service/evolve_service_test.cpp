@@ -186,6 +186,38 @@ TEST(EvolveService, TheRunStageSaysWhatRunsAndHowFar) {
   }
 }
 
+// An evaluator whose batches fail from the `failing`-th on (counting from 0): an environment
+// that raises, or a worker that dies.
+class FailingEvaluator final : public gp::Evaluator {
+ public:
+  explicit FailingEvaluator(int failing) : left_(failing) {}
+  std::vector<double> evaluate(const std::vector<const expr::Genome*>& genomes,
+                               const std::vector<std::uint64_t>&) override {
+    if (left_-- <= 0) throw std::runtime_error("the environment raised");
+    return std::vector<double>(genomes.size(), 1.0);
+  }
+
+ private:
+  int left_;
+};
+
+// A fresh run that fails before its first generation ends leaves no directory; one that fails
+// later keeps its checkpoint, to be resumed.
+TEST(EvolveService, ARunThatFailsInItsFirstGenerationLeavesNoDirectory) {
+  for (const int failing : {0, 1}) {
+    const auto dir = freshDir("service-fails-" + std::to_string(failing));
+    auto request = tinyRequest("service-fails", dir);
+    request.makeEvaluator = [failing](const run::EvaluatorSetup&) {
+      return std::make_unique<FailingEvaluator>(failing);
+    };
+    service::EvolveProgress quiet;
+    const std::atomic<bool> stop{false};
+    EXPECT_THROW(service::evolve(request, quiet, stop), std::runtime_error);
+    EXPECT_EQ(std::filesystem::exists(dir), failing > 0) << failing;
+    EXPECT_EQ(std::filesystem::exists(dir + "/checkpoint.json"), failing > 0) << failing;
+  }
+}
+
 TEST(EvolveText, DurationsRoundToTheUnitShown) {
   EXPECT_EQ(service::formatDuration(45.2), "45s");
   EXPECT_EQ(service::formatDuration(89.6), "1m30s");

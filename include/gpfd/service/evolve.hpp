@@ -71,7 +71,8 @@ std::unique_ptr<run::Discovery> openRun(const std::optional<run::ExperimentConfi
 
 // Runs the request. `stop` is checked after each generation (once its checkpoint is written).
 // InputError, before anything is written, for a bad request; the directory is locked for the
-// whole call.
+// whole call. A fresh single run that fails (or is interrupted) before its first generation ends
+// leaves no directory that this call created.
 EvolveResult evolve(const EvolveRequest& request, EvolveProgress& progress,
                     const std::atomic<bool>& stop);
 

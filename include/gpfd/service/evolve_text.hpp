@@ -1,6 +1,7 @@
 // service: the text a discovery run prints as it goes (`gpfd evolve`, and gpfd.evolve with
-// verbose=True): a header per run, a line per generation with an ETA, on a terminal a status line
-// of the running generation, what each run returned, and a set's summary.
+// verbose=True; without a display, only the verdict): a header per run, a line per generation with
+// an ETA, on a terminal a status line of the running generation, what each run returned, and a
+// set's summary.
 #pragma once
 
 #include <atomic>
@@ -22,8 +23,9 @@ class EvolveText final : public EvolveProgress {
  public:
   struct Options {
     TextSink out, err;
-    bool terminal = false;  // Redraw a status line of the running generation.
-    bool quiet = false;     // Only what stops a run (stderr) is written.
+    bool terminal = false;     // Redraw a status line of the running generation.
+    bool quiet = false;        // Only what stops a run (stderr) is written.
+    bool outcomeOnly = false;  // Also what each run returned (its verdict) and a set's summary.
     // How to continue a stopped run, with {} for its directory.
     std::string resumeCommand = "gpfd evolve --resume {}";
   };

@@ -1,0 +1,77 @@
+"""A worker process of gpfd's pool (gpfd.workers.WorkerPool), started as
+``python -m gpfd._worker TASKS RESULTS`` with two pipe descriptors. It never runs the user's
+``__main__``: everything it runs comes over the TASKS pipe (gpfd._frames), pickled by cloudpickle.
+
+Frames in: first the parent's sys.path (a plain pickle), then one task per frame, cloudpickle of
+(function, args), the first being the pool's initializer. Frames out: one reply per task,
+("ok", value) or ("error", pickled exception or None, its type's name, its text, the traceback).
+The worker ends when the TASKS pipe ends (exit 0), or when the parent ends it. SIGINT is
+ignored: Ctrl-C is the parent's to handle (it ends its workers).
+"""
+
+from __future__ import annotations
+
+import os
+import pickle
+import signal
+import sys
+import traceback
+
+import cloudpickle
+
+from gpfd import _frames
+
+
+def _error_reply(error: BaseException) -> tuple:
+    text = "".join(traceback.format_exception(type(error), error, error.__traceback__))
+    try:
+        pickled: bytes | None = cloudpickle.dumps(error)
+    except Exception:  # An exception that does not pickle travels as its name and text.
+        pickled = None
+    return ("error", pickled, type(error).__qualname__, str(error), text)
+
+
+def _reply(results: int, reply: tuple) -> bool:
+    """Sends `reply`; False when the parent is gone."""
+    try:
+        try:
+            _frames.send(results, reply)
+        except OSError:
+            raise
+        except Exception as e:  # The value does not pickle (nothing was sent): say so instead.
+            error = TypeError(f"the task's result does not pickle: {e}")
+            _frames.send(results, _error_reply(error))
+    except OSError:
+        return False
+    return True
+
+
+def _call(payload: bytes) -> tuple:
+    try:
+        function, args = cloudpickle.loads(payload)
+        return ("ok", function(*args))
+    except BaseException as e:  # SystemExit from user code too: reported, the worker goes on.
+        return _error_reply(e)
+
+
+def main(argv: list[str]) -> int:
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    tasks, results = int(argv[1]), int(argv[2])
+    try:
+        sys.path[:] = pickle.loads(_frames.receive_bytes(tasks))
+    except EOFError:
+        return 0
+    while True:  # The first task is the setup (the pool's initializer).
+        try:
+            payload = _frames.receive_bytes(tasks)
+        except EOFError:
+            return 0
+        if not _reply(results, _call(payload)):
+            return 0
+
+
+if __name__ == "__main__":
+    code = main(sys.argv)
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(code)  # No interpreter teardown: native threads and environments just end.

@@ -1,0 +1,138 @@
+"""gpfd's worker pool (gpfd.workers.WorkerPool): an executor whose workers are fresh interpreters
+that never run this ``__main__``; results in order; a worker's error comes back as itself; a
+worker that dies fails the pool at once, naming it, and is never restarted."""
+
+import os
+import signal
+import threading
+import time
+
+import pytest
+
+import gpfd
+from gpfd.workers import RemoteTraceback, WorkerError, WorkerPool
+from point_env import Point
+from test_user_env_workers import SMALL
+
+_SETUP: dict[str, int] = {}
+
+
+def _setup(value: int) -> None:
+    _SETUP["value"] = value
+
+
+def _work(x: int) -> tuple[int, int, int]:
+    return x * x, _SETUP.get("value", -1), os.getpid()
+
+
+def _fail(x: int) -> int:
+    raise ValueError(f"bad input {x}")
+
+
+def _die(code: int) -> None:
+    os._exit(code)
+
+
+def test_results_in_order_setup_once_per_worker_and_workers_of_their_own():
+    with WorkerPool(2, initializer=_setup, initargs=(7,)) as pool:
+        results = list(pool.map(_work, range(20)))
+        assert pool.workers == 2
+    assert [r[0] for r in results] == [x * x for x in range(20)]
+    assert {r[1] for r in results} == {7}  # Set up in each worker, kept there.
+    assert os.getpid() not in {r[2] for r in results}
+    # A function of this module travels by value (cloudpickle), a lambda too.
+    with WorkerPool(1) as pool:
+        assert pool.submit(lambda a, b: a + b, 2, 3).result() == 5
+
+
+def test_an_error_in_a_task_comes_back_as_itself_and_the_pool_goes_on():
+    with WorkerPool(1) as pool:
+        with pytest.raises(ValueError, match="bad input 3") as error:
+            pool.submit(_fail, 3).result()
+        assert isinstance(error.value.__cause__, RemoteTraceback)
+        assert "_fail" in str(error.value.__cause__)
+        assert pool.submit(_work, 4).result()[0] == 16
+
+
+def test_a_worker_that_dies_fails_the_pool_naming_it_and_is_not_restarted():
+    pool = WorkerPool(2)
+    try:
+        dead = pool.submit(_die, 3)
+        with pytest.raises(WorkerError, match=r"gpfd worker \d \(pid \d+\) exited with code 3"):
+            dead.result(timeout=60)
+        with pytest.raises(WorkerError, match="broken"):
+            pool.submit(_work, 1)
+    finally:
+        pool.terminate()
+    assert all(w.process.returncode is not None for w in pool._workers)
+
+
+def test_a_worker_killed_by_a_signal_is_named_with_it():
+    pool = WorkerPool(1)
+    try:
+        assert pool.submit(_work, 1).result(timeout=60)[0] == 1
+        os.kill(pool._workers[0].process.pid, signal.SIGKILL)
+        with pytest.raises(WorkerError, match="killed by SIGKILL"):
+            pool.submit(_work, 2).result(timeout=60)
+    finally:
+        pool.terminate()
+
+
+def test_a_setup_that_fails_fails_every_task():
+    pool = WorkerPool(1, initializer=_fail, initargs=(5,))
+    try:
+        with pytest.raises(WorkerError, match="could not set up: ValueError: bad input 5"):
+            pool.submit(_work, 1).result(timeout=60)
+    finally:
+        pool.terminate()
+
+
+def test_workers_ignore_sigint():
+    with WorkerPool(1) as pool:
+        pid = pool.submit(_work, 1).result(timeout=60)[2]
+        os.kill(pid, signal.SIGINT)  # Ignored: Ctrl-C is the parent's to handle.
+        assert pool.submit(_work, 2).result(timeout=60)[2] == pid
+
+
+def test_terminate_ends_running_tasks():
+    pool = WorkerPool(1)
+    try:
+        sleeping = pool.submit(time.sleep, 300)
+        while not sleeping.running():
+            time.sleep(0.01)
+    finally:
+        pool.terminate()
+    with pytest.raises(WorkerError, match="terminated"):
+        sleeping.result(timeout=60)
+    assert pool._workers[0].process.returncode == -signal.SIGTERM
+
+
+class DiesInStep(Point):
+    """Point whose step ends its process, as a crashing simulator would, but in the process of
+    the test (which samples states with it)."""
+
+    def step(self, action):
+        if os.getpid() != int(os.environ["GPFD_TEST_PARENT"]):
+            os._exit(7)
+        return super().step(action)
+
+
+def test_a_run_whose_worker_dies_stops_at_once_naming_it_and_keeps_nothing(tmp_path, monkeypatch):
+    monkeypatch.setenv("GPFD_TEST_PARENT", str(os.getpid()))  # The workers inherit it.
+    with pytest.raises(WorkerError, match=r"gpfd worker \d \(pid \d+\) exited with code 7"):
+        gpfd.evolve(
+            env=DiesInStep, population=4, generations=1, set=SMALL, threads=2, out=tmp_path / "r"
+        )
+    assert not (tmp_path / "r").exists()
+
+
+def test_a_factory_that_does_not_pickle_is_a_clear_error_with_workers(tmp_path):
+    lock = threading.Lock()  # Held by the factory: no pickle.
+
+    def make():
+        with lock:
+            return Point()
+
+    with pytest.raises(TypeError, match="cannot be sent to the worker processes.*threads=1"):
+        gpfd.evolve(env=make, population=4, generations=1, threads=2, out=tmp_path / "r")
+    assert not (tmp_path / "r").exists()
