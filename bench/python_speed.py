@@ -22,6 +22,7 @@ here runs on one thread), so that other jobs on the machine disturb it less than
 
 import argparse
 import functools
+import platform
 import statistics
 import time
 import warnings
@@ -201,17 +202,22 @@ def fitness_cost(scale):
         + ("" if envpool_available() else "; EnvPool not installed")
     )
     times = {name: [] for name, _ in cases}
+    values: dict[str, list[float]] = {}  # Each case's fitness values, seed by seed.
     for _ in range(REPEATS):
         for name, run in cases:
             start = time.process_time()
-            for seed in seeds:
-                run(seed)
+            results = [run(seed) for seed in seeds]
             per_call = GROUP if (name, run) in grouped else 1
             times[name].append((time.process_time() - start) / len(seeds) / per_call)
+            values[name] = [v for r in results for v in (r if isinstance(r, list) else [r])]
     base = statistics.median(times[cases[0][0]])
+    # The mean fitness of a case's evaluations: the same on every Python and platform where the
+    # runs are the same (bit for bit), so that machines and versions compare at a glance.
+    print(f"{'':<36} {'CPU time':>12} {'':>8} {'mean fitness':>18}")
     for name, _ in cases:
         seconds = statistics.median(times[name])
-        print(f"{name:<36} {seconds * 1000:>9.1f} ms {seconds / base:>7.1f}x")
+        mean = statistics.fmean(values[name])
+        print(f"{name:<36} {seconds * 1000:>9.1f} ms {seconds / base:>7.1f}x {mean:>18.10g}")
     vector_step_floor(python_raw, settings, seeds)
 
 
@@ -287,8 +293,8 @@ def main():
     warnings.filterwarnings("ignore")
     scale = 1 if args.quick else 10
     print(
-        f"gpfd {gpfd.__version__}, Gymnasium {gym.__version__}, NumPy {np.__version__}; "
-        f"median of {REPEATS}, CPU time\n"
+        f"gpfd {gpfd.__version__}, Python {platform.python_version()}, Gymnasium "
+        f"{gym.__version__}, NumPy {np.__version__}; median of {REPEATS}, CPU time\n"
     )
     if "1" in args.sections:
         environments(scale)

@@ -218,6 +218,8 @@ void VectorHub::stepMembers(const std::vector<std::size_t>& stepping) {
   try {
     result = subsets_ ? stepSubset_(nb::cast(stepped_)) : step_(actions_);
   } catch (nb::python_error& e) {
+    // An interruption (KeyboardInterrupt, SystemExit) is not the environment's failure.
+    if (!e.matches(PyExc_Exception)) throw;
     adapter_.attr("step_raised")(e.value(), steps_, activeSubEnvironments(stepping));
     throw std::logic_error("VectorAdapter.step_raised must raise");
   }
