@@ -3,6 +3,10 @@
 # pyproject.toml); a developer build passes -DGPFD_BUILD_PYTHON=ON
 # -DPython_EXECUTABLE=<venv>/bin/python.
 find_package(Python 3.10 REQUIRED COMPONENTS Interpreter Development.Module)
+if(Python_VERSION VERSION_GREATER_EQUAL 3.12)
+  # The stable ABI (STABLE_ABI below) needs the limited API's module (CMake 3.26 or later).
+  find_package(Python REQUIRED COMPONENTS Interpreter Development.Module Development.SABIModule)
+endif()
 execute_process(
   COMMAND "${Python_EXECUTABLE}" -m nanobind --cmake_dir
   OUTPUT_STRIP_TRAILING_WHITESPACE
@@ -15,7 +19,9 @@ endif()
 find_package(nanobind CONFIG REQUIRED)
 
 file(GLOB GPFD_PYTHON_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/python/src/*.cpp)
-nanobind_add_module(_core NOMINSIZE NB_SUPPRESS_WARNINGS ${GPFD_PYTHON_SOURCES})
+# STABLE_ABI: built for CPython 3.12 or later, the module uses only the limited API (abi3), so that
+# one wheel serves 3.12 and every later version; older Pythons get a module of their own version.
+nanobind_add_module(_core STABLE_ABI NOMINSIZE NB_SUPPRESS_WARNINGS ${GPFD_PYTHON_SOURCES})
 target_link_libraries(_core PRIVATE gpfd::core gpfd::fibers gpfd_version)
 target_compile_options(_core PRIVATE ${GPFD_WARNINGS})
 if(GPFD_JIT_AVAILABLE)
