@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <initializer_list>
+#include <memory>
 #include <span>
 #include <string>
 
@@ -33,6 +34,15 @@ nb::ndarray<nb::numpy, T> newArray(std::initializer_list<std::size_t> shape) {
 // str(value), as Python prints it.
 inline std::string pyText(nb::handle value) {
   return nb::cast<std::string>(nb::steal<nb::str>(PyObject_Str(value.ptr())));
+}
+
+// `object` held for code that copies it without the GIL (a std::function the engine copies): the
+// copies share one reference, and the last one releases it with the GIL taken. Call with the GIL.
+inline std::shared_ptr<const nb::object> heldWithGil(nb::object object) {
+  return {new nb::object(std::move(object)), [](const nb::object* held) {
+            const nb::gil_scoped_acquire gil;
+            delete held;
+          }};
 }
 
 // The numpy module (imported once by Python, then a dictionary look-up).

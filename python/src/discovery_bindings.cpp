@@ -315,8 +315,11 @@ nb::tuple evolve(const std::string& config, const std::vector<std::string>& over
   request.runs = runs;
   request.outName = outName;
   if (!evaluate.is_none()) {
-    request.makeEvaluator = [evaluate](const run::EvaluatorSetup& setup) {
-      return std::make_unique<PythonBatchEvaluator>(evaluate, setup.configText, setup.onEvaluated);
+    // The request is copied, and the evaluator made, without the GIL: the Python object is held
+    // where copies of the function do not touch its reference count.
+    request.makeEvaluator = [held = heldWithGil(evaluate)](const run::EvaluatorSetup& setup) {
+      const nb::gil_scoped_acquire gil;
+      return std::make_unique<PythonBatchEvaluator>(*held, setup.configText, setup.onEvaluated);
     };
     // An environment stepped in Python: the GP's evaluations and the validation and confirmation
     // trials all go to the evaluator's worker processes (threads of this process would only queue
