@@ -191,7 +191,8 @@ def test_an_id_registered_under_the_main_guard_reaches_the_workers(tmp_path):
 
 
 def test_a_run_on_a_user_env_resumes_with_the_env_as_stored_or_given(tmp_path):
-    gym.register("gpfd-test/Point-v0", entry_point=Point, kwargs={"steps": 10})
+    entry: Any = Point  # Gymnasium's EnvCreator type does not name a class.
+    gym.register("gpfd-test/Point-v0", entry_point=entry, kwargs={"steps": 10})
     common: dict[str, Any] = {"seed": 2, "population": 4, "set": SMALL, "threads": 1}
     by_id = gpfd.evolve(env="gpfd-test/Point-v0", generations=1, out=tmp_path / "id", **common)
     assert by_id.finished and by_id.generations == 1
