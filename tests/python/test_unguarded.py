@@ -10,32 +10,15 @@ from pathlib import Path
 
 import pytest
 
-from test_user_env_workers import SMALL
+from test_user_env_workers import SMALL, TINY_SOURCE
 
-CODE = """
-import gymnasium as gym
-import numpy as np
-
-import gpfd
-
-
-class Tiny(gym.Env):
-    observation_space = gym.spaces.Box(-1.0, 1.0, (2,), np.float64)
-    action_space = gym.spaces.Discrete(2)
-
-    def reset(self, *, seed=None, options=None):
-        super().reset(seed=seed)
-        self.t = 0
-        return self.np_random.uniform(-1.0, 1.0, 2), {}
-
-    def step(self, action):
-        self.t += 1
-        return np.full(2, 0.1 * action), float(action), False, self.t >= 10, {}
-
-
+CODE = (
+    TINY_SOURCE
+    + """
 run = gpfd.evolve(env=Tiny, threads=2, seed=1, population=4, generations=1, set=SETTINGS)
 print("finished", run.finished, run.dir, run.info["threads"])
-""".replace("SETTINGS", repr(SMALL))
+"""
+).replace("SETTINGS", repr(SMALL))
 
 
 def check_results(directory: Path, output: str) -> None:

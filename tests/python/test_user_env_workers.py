@@ -144,9 +144,8 @@ def test_a_run_on_a_user_env_is_named_for_it_and_says_which_config(tmp_path, mon
     assert user_env.run_name("python:..") == "user-env"
 
 
-SCRIPT = """
-import sys
-
+# A tiny Gymnasium environment as a script defines it (also tests/python/test_unguarded.py).
+TINY_SOURCE = """
 import gymnasium as gym
 import numpy as np
 
@@ -166,7 +165,12 @@ class Tiny(gym.Env):
         self.t += 1
         return np.full(2, 0.1 * action), float(action), False, self.t >= 10, {}
 
+"""
 
+SCRIPT = (
+    "import sys\n"
+    + TINY_SOURCE
+    + """
 if __name__ == "__main__":
     gym.register("GuardedTiny-v0", entry_point=Tiny)
     settings = {SETTINGS}
@@ -174,6 +178,7 @@ if __name__ == "__main__":
                       set=settings, out=sys.argv[1])
     print("finished", run.finished)
 """
+)
 
 
 def test_an_id_registered_under_the_main_guard_reaches_the_workers(tmp_path):
