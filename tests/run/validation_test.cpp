@@ -250,5 +250,39 @@ TEST(MethodVerdict, CountsRunsAndReadsBack) {
   EXPECT_EQ(parseMethodCsv(before, "before.csv", readFinal, readArea).size(), 8u);
 }
 
+// The no-learning row of method-NAME.csv reads back, and the verdict names a harmful learner and
+// the runs whose discovered set ends no better than no learning.
+TEST(MethodVerdict, SaysWhereTheOriginalVariablesOrARunAreNoBetterThanNoLearning) {
+  const Summary originalFinal{20, 100, 10, 4}, originalArea{20, 50, 5, 2};
+  std::vector<RunAssessment> runs;
+  for (int r = 1; r <= 4; ++r) {
+    RunAssessment a;
+    a.run = r;
+    a.returned = r == 4 ? "original" : "discovered";
+    a.final = {20, r == 1 ? 150.0 : 131.0, 10, 4};  // Runs 2 and 3 level with no learning.
+    a.area = {20, 50, 5, 2};
+    runs.push_back(a);
+  }
+  const NoLearningRow noLearning{{20, 130, 10, 4}, {20, 40, 5, 2}};
+  const auto verdict = methodVerdict(runs, originalFinal, originalArea, noLearning);
+  EXPECT_TRUE(verdict.noLearningAssessed);
+  EXPECT_TRUE(verdict.learnerHarms);
+  EXPECT_EQ(verdict.discoveredNoBetter, 2);
+  EXPECT_NE(noLearningSentence(verdict).find("The learner harms"), std::string::npos);
+  EXPECT_NE(noLearningSentence(verdict).find("2 of 4 runs"), std::string::npos);
+  Summary readFinal, readArea;
+  std::optional<NoLearningRow> read;
+  const auto csv = formatMethodCsv(runs, originalFinal, originalArea, noLearning);
+  EXPECT_NE(csv.find("\nno-learning,,,,,,0,0,0,0,0,0,20,130,10,20,40,5,"), std::string::npos)
+      << csv;
+  EXPECT_EQ(parseMethodCsv(csv, "test", readFinal, readArea, &read).size(), 4u);
+  ASSERT_TRUE(read.has_value());
+  EXPECT_EQ(read->final.mean, 130.0);
+  EXPECT_EQ(read->area.stddev, 5.0);
+  // Without the reference (files made before it): nothing said.
+  EXPECT_FALSE(methodVerdict(runs, originalFinal, originalArea).noLearningAssessed);
+  EXPECT_EQ(noLearningSentence(methodVerdict(runs, originalFinal, originalArea)), "");
+}
+
 }  // namespace
 }  // namespace gpfd::run

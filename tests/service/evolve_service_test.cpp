@@ -171,13 +171,15 @@ TEST(EvolveService, TheRunStageSaysWhatRunsAndHowFar) {
     const auto& validation = discovery->validation();
     if (confirmSeeds == 0) {
       EXPECT_EQ(end.kind, run::RunStage::Validation);
-      // The original variables and the hall of fame, each on the 4 validation seeds.
-      EXPECT_EQ(end.total, static_cast<int>(validation.sets.size()) * 4);
+      // The original variables, the hall of fame and the no-learning reference, each on the 4
+      // validation seeds.
+      EXPECT_EQ(end.total, static_cast<int>(validation.sets.size() + 1) * 4);
       EXPECT_EQ(end.done, end.total);
       EXPECT_STREQ(run::stageName(end.kind), "validation");
     } else {
       EXPECT_EQ(end.kind, run::RunStage::Confirmation);
-      const int sets = validation.confirmation.key.empty() ? 1 : 2;
+      // The original variables, the winner unless it is them, and no learning.
+      const int sets = validation.confirmation.key.empty() ? 2 : 3;
       EXPECT_EQ(end.total, sets * 6);
       EXPECT_EQ(end.done, end.total);  // One look: every seed.
       EXPECT_EQ(static_cast<int>(validation.confirmation.original.size()), 6);
