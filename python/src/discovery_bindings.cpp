@@ -173,6 +173,7 @@ class PythonProgress final : public service::EvolveProgress {
   void alreadyComplete(const std::string& dir, int generations) override {
     text_.alreadyComplete(dir, generations);
   }
+  void budgetSized(const std::string& text) override { text_.budgetSized(text); }
 
   // Ends the polling thread; call without the GIL, which the thread takes.
   void stopPolling() {

@@ -136,6 +136,29 @@ struct Discovery::State {
   bool validating() const { return config.validation.candidates > 0; }
   bool generationsDone() const { return evolution.generation() + 1 >= config.gp.generations; }
 
+  // A time budget's end (DiscoveryOptions::deadline): the generations become those made and
+  // those that still fit before the deadline, validation and confirmation left out, each as long
+  // as the longest of the last three; written into config.toml and the checkpoint when they
+  // change.
+  void fitDeadline() {
+    if (!options.deadline) return;
+    double next = 0.0;
+    for (std::size_t i = history.size() > 3 ? history.size() - 3 : 0; i < history.size(); ++i) {
+      next = std::max(next, history[i].seconds);
+    }
+    const double left =
+        std::chrono::duration<double>(*options.deadline - std::chrono::steady_clock::now())
+            .count() -
+        options.finishSeconds;
+    const double fit = next > 0.0 ? std::floor(std::max(0.0, left) / next) : 0.0;
+    const int generations = evolution.generation() + 1 + static_cast<int>(std::min(fit, 1e6));
+    if (generations == config.gp.generations) return;
+    config.gp.generations = generations;
+    configText = formatExperimentConfig(config);
+    writeFileAtomically(path("config.toml"), configText);
+    writeCheckpoint();
+  }
+
   // Scores the hall of fame members (and the original variables) not validated yet.
   void validateHallOfFame() {
     const auto start = std::chrono::steady_clock::now();
@@ -272,6 +295,9 @@ std::unique_ptr<Discovery> Discovery::start(const ExperimentConfig& config,
                                {"revision", options.revision},
                                {"threads", state->threads}};
     if (options.processes > 1) run["mpi_processes"] = options.processes;
+    if (!options.timeBudgetJson.empty()) {
+      run["time_budget"] = nlohmann::ordered_json::parse(options.timeBudgetJson);
+    }
     writeFileAtomically(state->path("run.json"), run.dump(1) + "\n");
   } catch (...) {
     // Leave nothing half-made behind.
@@ -336,6 +362,7 @@ void Discovery::run(const std::function<void(const GenerationRecord&)>& onGenera
     s_->enterStage(RunStage::Generations, s_->config.gp.population);
     const auto stats = evolution.generation() < 0 ? evolution.initialize() : evolution.step();
     s_->persist(stats);
+    s_->fitDeadline();
     onGeneration(s_->history.back());
     if (s_->validating() && every > 0 && (stats.generation + 1) % every == 0 &&
         !s_->generationsDone()) {

@@ -197,6 +197,10 @@ void EvolveText::setFinished(const std::vector<run::RunOutcome>& outcomes, const
   }
 }
 
+void EvolveText::budgetSized(const std::string& text) {
+  if (!o_.quiet) o_.out(text);
+}
+
 void EvolveText::alreadyComplete(const std::string& dir, int generations) {
   o_.err(
       fmt::format("the run in {0} is already complete (generations: {1}); pass --generations N "
