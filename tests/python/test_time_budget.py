@@ -2,9 +2,9 @@
 config.toml (no budget left in it) and run.json; bad values are gpfd.InputError."""
 
 import json
+import re
 
 import pytest
-import tomllib
 
 import gpfd
 from conftest import QUICK
@@ -14,12 +14,14 @@ def test_a_budget_writes_the_sizes_it_chose(tmp_path):
     settings = {**QUICK, "validation.candidates": 3, "validation.seeds": 6}
     settings["validation.confirm_seeds"] = 6
     run = gpfd.evolve("cartpole-quick", time_budget="3s", set=settings, out=tmp_path / "run")
-    config = tomllib.loads((tmp_path / "run/config.toml").read_text())
+    config = (tmp_path / "run/config.toml").read_text()
     assert "time_budget" not in config
     chosen = json.loads((tmp_path / "run/run.json").read_text())["time_budget"]
     assert chosen["seconds"] == 3.0
-    assert chosen["chosen"]["population"] == config["gp"]["population"]
-    assert config["gp"]["generations"] >= 1
+    population = re.search(r"^population = (\d+)$", config, re.MULTILINE)
+    assert population is not None
+    assert int(population.group(1)) == chosen["chosen"]["population"]
+    assert re.search(r"^generations = [1-9]", config, re.MULTILINE)
     assert run.dir == tmp_path / "run"
 
 

@@ -119,8 +119,10 @@ TEST(NoLearning, AssessmentsTrainItAsTheLastRow) {
   request.raw = true;
   request.runs = 6;
   request.budget = 10;
-  request.write = false;
+  const auto dir = freshDir("no-learning-assess");
+  request.out = {dir, false, "--out"};
   const auto result = service::assess(request);
+  EXPECT_EQ(lastLine(readText(dir + "/summary.csv")).rfind("no-learning,6,", 0), 0u);
   ASSERT_EQ(result.summary.size(), 2u);
   EXPECT_EQ(result.summary[0].name, "original");
   EXPECT_EQ(result.summary[1].name, "no-learning");
