@@ -108,8 +108,8 @@ TEST(EvolveService, AStoppedRunsFeaturesAreWhatTheLearnerSawAndSaySo) {
 
   const auto config = service::loadConfig(request.config, request.overrides);
   const run::LearningTask task(config, run::LearningTask::Budget::Trial);
-  auto resumed =
-      run::Discovery::resume({dir, 1, kVersion, "", {}, 1, {}, "", {}, 0.0}, std::nullopt, std::nullopt);
+  auto resumed = run::Discovery::resume({dir, 1, kVersion, "", {}, 1, {}, "", {}, 0.0},
+                                        std::nullopt, std::nullopt);
   const auto& best = resumed->history().at(0).bestGenome;
   for (const std::string name : {"best.features", "best/generation-0000.features"}) {
     const auto file = expr::readFeaturesFile(dir + "/" + name);
