@@ -10,6 +10,8 @@
 #include "command.hpp"
 #include "gpfd/service/evolve.hpp"
 #include "gpfd/service/evolve_text.hpp"
+#include "gpfd/util/error.hpp"
+#include "gpfd/util/number.hpp"
 #include "gpfd/version.hpp"
 #include "interrupt.hpp"
 
@@ -33,6 +35,7 @@ struct EvolveOptions {
   std::string resume;
   std::vector<std::string> sets;
   std::optional<int> runs;
+  std::optional<std::string> timeBudget;
   bool quiet = false;
   double mpiTimeout = 60.0;  // Seconds (mpi::kDefaultWorkerTimeout).
 };
@@ -43,6 +46,15 @@ std::vector<std::string> overrides(const EvolveOptions& o) {
   if (!o.env.empty()) all.push_back("env.name=\"" + o.env + "\"");
   if (o.seed) all.push_back("seed=" + std::to_string(*o.seed));
   if (o.population) all.push_back("gp.population=" + std::to_string(*o.population));
+  if (o.timeBudget) {
+    if (o.population || o.generations) {
+      throw InputError(
+          "a time budget chooses the population and the generations: give either "
+          "it or them",
+          "--time-budget");
+    }
+    all.push_back("time_budget=" + numberText(parseDuration(*o.timeBudget, "--time-budget")));
+  }
   all.insert(all.end(), o.sets.begin(), o.sets.end());
   return all;
 }
@@ -123,6 +135,10 @@ const CommandRegistration registration{
                       "Independent GP runs (1-1000): run r in OUT/run-NN with a seed derived "
                       "from --seed (run 1 uses it as is); runs.csv sums them up")
           ->check(bounded(1, 1000));
+      cmd->add_option("--time-budget", o->timeBudget,
+                      "Wall time for the whole command (90s, 10m, 1h30m, or seconds): the cost "
+                      "of an evaluation is measured, and the population, generations and "
+                      "validation sized to end within it (written to config.toml)");
       cmd->add_flag("--quiet", o->quiet, "No progress output");
       cmd->add_option("--mpi-timeout", o->mpiTimeout,
                       "Under mpiexec: seconds without a message after which a worker is lost "

@@ -194,6 +194,7 @@ def evolve(
     env_kwargs: dict[str, Any] | None = None,
     verbose: bool | None = None,
     force: bool = False,
+    time_budget: float | str | None = None,
 ) -> Run:
     """Discovers features with GP, exactly as ``gpfd evolve`` does, and returns the run.
 
@@ -213,6 +214,8 @@ def evolve(
         one that already holds files needs ``force=True``, one that holds a run is resumed with
         ``resume=``, never started over. The directory is locked while the run writes into it.
     set: any config key, ``{"gp.elitism": 0.2}`` or ``["gp.elitism=0.2"]`` (``--set``).
+    time_budget: seconds, or text such as ``"10m"`` (``--time-budget``): sizes the population,
+        the generations and the validation to end within it, written to config.toml.
     callback: called after each generation (once its checkpoint is written) with its statistics
         (generation, best, mean, median, mean_size, mean_features, evaluations, cache_hits,
         seconds, best_features); a true return value stops the run there.
@@ -236,7 +239,7 @@ def evolve(
         generations = _whole("generations", generations, 0)
     out_name = ""
     if resume is not None:
-        if seed is not None or population is not None or set is not None:
+        if seed is not None or population is not None or set is not None or time_budget is not None:
             raise TypeError("resume continues with the stored config; only generations may change")
         overrides: list[str] = []
         evaluator = _resumed_env(resume, env, env_kwargs)
@@ -251,6 +254,8 @@ def evolve(
         if population is not None:
             overrides.append(f"gp.population={_whole('population', population, 1)}")
         overrides += _overrides(set)
+        if time_budget is not None:
+            overrides += _overrides({"time_budget": time_budget})
     if evaluator is not None:
         evaluator.workers = threads if threads > 0 else (os.cpu_count() or 1)
 

@@ -29,7 +29,7 @@ nb::tuple featuresToPython(const run::TrialFeatures& f) {
 run::TrialFeatures featuresFromPython(const nb::tuple& t, int variableCount) {
   run::TrialFeatures f;
   const int kind = nb::cast<int>(t[0]);
-  if (kind < 0 || kind > static_cast<int>(run::TrialFeatures::Kind::Fourier)) {
+  if (kind < 0 || kind > static_cast<int>(run::TrialFeatures::kLastKind)) {
     throw std::invalid_argument(fmt::format("unknown kind of trial features {}", kind));
   }
   f.kind = static_cast<run::TrialFeatures::Kind>(kind);

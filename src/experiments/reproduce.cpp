@@ -283,6 +283,8 @@ io::Report benchmark(Experiment& e, const ExperimentConfig& config, const std::s
     }
     gpRuns.push_back(std::move(run));
   }
+  // The no-learning reference last, so that no other set's seeds move.
+  sets.push_back({"no-learning", TrialFeatures::noLearning()});
   const std::string assessName = "assess-" + config.name;
   e.assess(task, sets, assessName, config.env + " (" + config.name + ")");
   // The Fourier basis against the original variables (same seeds, so the same original runs),
@@ -299,6 +301,11 @@ io::Report benchmark(Experiment& e, const ExperimentConfig& config, const std::s
   const auto finals = readFinals(e.dir() + "/" + assessName);
   const Summary originalFinal = summarize(finals[0].finals);
   const Summary originalArea = summarize(finals[0].areas);
+  std::optional<NoLearningRow> noLearning;  // Absent from assessments made before it existed.
+  for (const auto& set : finals) {
+    if (set.name == "no-learning")
+      noLearning = NoLearningRow{summarize(set.finals), summarize(set.areas)};
+  }
   std::vector<RunAssessment> assessed;
   std::size_t nextSet = firstRun;
   for (std::size_t r = 0; r < gpRuns.size(); ++r) {
@@ -322,8 +329,8 @@ io::Report benchmark(Experiment& e, const ExperimentConfig& config, const std::s
     assessed.push_back(a);
   }
   writeFileAtomically(e.dir() + "/method-" + config.name + ".csv",
-                      formatMethodCsv(assessed, originalFinal, originalArea));
-  const auto verdict = methodVerdict(assessed, originalFinal, originalArea);
+                      formatMethodCsv(assessed, originalFinal, originalArea, noLearning));
+  const auto verdict = methodVerdict(assessed, originalFinal, originalArea, noLearning);
   const auto baseline = baselineVerdict(e.options(), figure, config.name);
 
   io::Report r(heading);
@@ -368,6 +375,7 @@ io::Report benchmark(Experiment& e, const ExperimentConfig& config, const std::s
                      "(Mann-Whitney)"
                : ""));
   r.table(verdictTable(verdict, baseline ? &*baseline : nullptr));
+  if (const auto sentence = noLearningSentence(verdict); !sentence.empty()) r.paragraph(sentence);
   r.paragraph("Settings (the full resolved config: `" + figure + "/" + gpRuns.front().dir +
               "/config.toml`):");
   r.table(settingsTable(config));

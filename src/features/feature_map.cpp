@@ -33,6 +33,10 @@ void RawFeatureMap::evaluateLaneBlocks(const double* blocks, std::size_t groups,
   std::copy(blocks, blocks + groups * 4 * dim_, out);  // The features' blocks are the states'.
 }
 
+void ZeroFeatureMap::evaluate(const double* /*state*/, double* features) const {
+  features[0] = 0.0;
+}
+
 ConcatFeatureMap::ConcatFeatureMap(std::vector<std::shared_ptr<const FeatureMap>> parts)
     : parts_(std::move(parts)) {
   if (parts_.empty()) throw std::invalid_argument("ConcatFeatureMap needs at least one part");

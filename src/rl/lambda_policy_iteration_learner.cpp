@@ -87,7 +87,13 @@ class LambdaPolicyIterationLearner final : public Learner {
     LambdaPolicyIterationConfig config = settings_.algorithm;
     config.onPoint = onPoint;
     env::AfterstateGame& game = gameOf(env);
-    if (settings_.knownStart) config.initialWeights = knownStart(env, game, map);
+    // A map that ignores the state (the no-learning reference) starts from zero: starting
+    // weights are over the state's own features.
+    if (map.ignoresState()) {
+      config.initialWeights.clear();
+    } else if (settings_.knownStart) {
+      config.initialWeights = knownStart(env, game, map);
+    }
     GameAfterstateProblem problem(env, game);
     return trainLambdaPolicyIteration(problem, map, config, rng);
   }

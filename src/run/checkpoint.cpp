@@ -100,10 +100,13 @@ std::string formatCheckpoint(const Checkpoint& c) {
             {"history", history},
             {"validation",
              {{"sets", validated},
+              {"no_learning", numbers(c.validation.noLearning)},
               {"confirmation",
                {{"key", c.validation.confirmation.key},
                 {"winner", numbers(c.validation.confirmation.winner)},
-                {"original", numbers(c.validation.confirmation.original)}}},
+                {"original", numbers(c.validation.confirmation.original)},
+                {"no_learning", numbers(c.validation.confirmation.noLearning)},
+                {"no_learning_level", c.validation.confirmation.noLearningLevel}}},
               {"final_generation", c.validation.finalGeneration},
               {"seconds", c.validation.seconds}}}};
   return j.dump(1) + "\n";
@@ -155,6 +158,15 @@ Checkpoint parseCheckpoint(const std::string& text, const std::string& source) {
       c.validation.confirmation.key = confirmation.at("key").get<std::string>();
       c.validation.confirmation.winner = numbersFrom(confirmation.at("winner"));
       c.validation.confirmation.original = numbersFrom(confirmation.at("original"));
+      // Checkpoints written before the no-learning reference lack it.
+      if (confirmation.contains("no_learning")) {
+        c.validation.confirmation.noLearning = numbersFrom(confirmation.at("no_learning"));
+        c.validation.confirmation.noLearningLevel =
+            confirmation.at("no_learning_level").get<double>();
+      }
+    }
+    if (validation.contains("no_learning")) {
+      c.validation.noLearning = numbersFrom(validation.at("no_learning"));
     }
     c.validation.finalGeneration = validation.at("final_generation").get<int>();
     c.validation.seconds = validation.at("seconds").get<double>();

@@ -136,6 +136,29 @@ struct Discovery::State {
   bool validating() const { return config.validation.candidates > 0; }
   bool generationsDone() const { return evolution.generation() + 1 >= config.gp.generations; }
 
+  // A time budget's end (DiscoveryOptions::deadline): the generations become those made and
+  // those that still fit before the deadline, validation and confirmation left out, each as long
+  // as the longest of the last three; written into config.toml and the checkpoint when they
+  // change.
+  void fitDeadline() {
+    if (!options.deadline) return;
+    double next = 0.0;
+    for (std::size_t i = history.size() > 3 ? history.size() - 3 : 0; i < history.size(); ++i) {
+      next = std::max(next, history[i].seconds);
+    }
+    const double left =
+        std::chrono::duration<double>(*options.deadline - std::chrono::steady_clock::now())
+            .count() -
+        options.finishSeconds;
+    const double fit = next > 0.0 ? std::floor(std::max(0.0, left) / next) : 0.0;
+    const int generations = evolution.generation() + 1 + static_cast<int>(std::min(fit, 1e6));
+    if (generations == config.gp.generations) return;
+    config.gp.generations = generations;
+    configText = formatExperimentConfig(config);
+    writeFileAtomically(path("config.toml"), configText);
+    writeCheckpoint();
+  }
+
   // Scores the hall of fame members (and the original variables) not validated yet.
   void validateHallOfFame() {
     const auto start = std::chrono::steady_clock::now();
@@ -161,9 +184,15 @@ struct Discovery::State {
     }
     std::vector<const expr::Genome*> genomes;
     for (const auto& set : fresh) genomes.push_back(set.isOriginal() ? nullptr : &set.genome);
-    stageTotal.store(static_cast<int>(genomes.size()) * validator->seeds());
-    auto scores = validator->score(genomes);
+    auto sets = validator->features(genomes);
+    // The no-learning reference, scored once, last: on the same seeds as every set, which
+    // it leaves as they are (a curve depends on its features, budget and seed only).
+    const bool reference = validation.noLearning.empty();
+    if (reference) sets.push_back(TrialFeatures::noLearning());
+    stageTotal.store(static_cast<int>(sets.size()) * validator->seeds());
+    auto scores = validator->score(sets);
     stageDone.store(stageTotal.load());
+    if (reference) validation.noLearning = std::move(scores.back());
     for (std::size_t i = 0; i < fresh.size(); ++i) {
       fresh[i].scores = std::move(scores[i]);
       validation.sets.push_back(std::move(fresh[i]));
@@ -175,13 +204,14 @@ struct Discovery::State {
 
   // validation.csv, marking the set at index `returned`.
   void writeValidationCsv(std::size_t returned) const {
-    writeFileAtomically(path("validation.csv"),
-                        formatValidationCsv(validation.sets, returned, task.stateNames()));
+    writeFileAtomically(
+        path("validation.csv"),
+        formatValidationCsv(validation.sets, returned, task.stateNames(), validation.noLearning));
   }
 
-  // Trains the validation winner (unless it is the original variables) and the original
-  // variables on the confirmation seeds, a look at a time (run/sequential_test.hpp): a clear
-  // difference ends the trials before the last seed.
+  // Trains the validation winner (unless it is the original variables), the original variables
+  // and the no-learning reference on the confirmation seeds, a look at a time
+  // (run/sequential_test.hpp): a clear decision ends the trials before the last seed.
   void confirmWinner() {
     validation.confirmation = {};
     if (!config.validation.confirms()) return;
@@ -192,19 +222,27 @@ struct Discovery::State {
     auto& confirmation = validation.confirmation;
     confirmation.key = winner.key;  // Empty for the original variables.
     const Validator confirm = Validator::confirmation(config, *trialRunner);
-    enterStage(RunStage::Confirmation, static_cast<int>(genomes.size()) * confirm.seeds());
-    const auto sets = confirm.features(genomes);
+    auto sets = confirm.features(genomes);
+    sets.push_back(TrialFeatures::noLearning());  // Last, on the same seeds.
+    enterStage(RunStage::Confirmation, static_cast<int>(sets.size()) * confirm.seeds());
     // The original variables alone are confirmed for their score only: nothing to decide.
     const int looks = winner.isOriginal() ? 1 : config.validation.confirmLooks;
+    confirmation.noLearningLevel = nominalLevel(looks, looks);
     for (int look = 1, trained = 0; trained < confirm.seeds(); ++look) {
       const int until = seedsAtLook(confirm.seeds(), look, looks);
       auto scores = confirm.score(sets, trained, until);
       trained = until;
-      stageDone.store(static_cast<int>(genomes.size()) * trained);
-      confirmation.original.insert(confirmation.original.end(), scores[0].begin(), scores[0].end());
-      if (scores.size() < 2) continue;
-      confirmation.winner.insert(confirmation.winner.end(), scores[1].begin(), scores[1].end());
-      if (endsAtLook(comparePaired(confirmation.winner, confirmation.original), look, looks)) {
+      stageDone.store(static_cast<int>(sets.size()) * trained);
+      const auto append = [](std::vector<double>& to, const std::vector<double>& from) {
+        to.insert(to.end(), from.begin(), from.end());
+      };
+      append(confirmation.original, scores[0]);
+      append(confirmation.noLearning, scores.back());
+      if (winner.isOriginal()) continue;
+      append(confirmation.winner, scores[1]);
+      const auto vsNoLearning = comparePaired(confirmation.winner, confirmation.noLearning);
+      if (confirmationEndsAtLook(comparePaired(confirmation.winner, confirmation.original),
+                                 &vsNoLearning, look, looks)) {
         break;
       }
     }
@@ -257,6 +295,9 @@ std::unique_ptr<Discovery> Discovery::start(const ExperimentConfig& config,
                                {"revision", options.revision},
                                {"threads", state->threads}};
     if (options.processes > 1) run["mpi_processes"] = options.processes;
+    if (!options.timeBudgetJson.empty()) {
+      run["time_budget"] = nlohmann::ordered_json::parse(options.timeBudgetJson);
+    }
     writeFileAtomically(state->path("run.json"), run.dump(1) + "\n");
   } catch (...) {
     // Leave nothing half-made behind.
@@ -321,6 +362,7 @@ void Discovery::run(const std::function<void(const GenerationRecord&)>& onGenera
     s_->enterStage(RunStage::Generations, s_->config.gp.population);
     const auto stats = evolution.generation() < 0 ? evolution.initialize() : evolution.step();
     s_->persist(stats);
+    s_->fitDeadline();
     onGeneration(s_->history.back());
     if (s_->validating() && every > 0 && (stats.generation + 1) % every == 0 &&
         !s_->generationsDone()) {

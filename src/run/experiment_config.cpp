@@ -17,6 +17,7 @@
 #include "gpfd/run/sequential_test.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
+#include "gpfd/util/number.hpp"
 
 namespace gpfd::run {
 namespace {
@@ -39,6 +40,7 @@ void visit(V& v, ExperimentConfig& c) {
   v.text("", "name", c.name);
   v.seed("", "seed", c.seed);
   v.texts("", "plugins", c.plugins);
+  v.duration("", "time_budget", c.timeBudget);
   v.text("env", "name", c.env);
   v.params("env.params", c.envParams);
   v.text("learner", "name", c.learner);
@@ -165,6 +167,19 @@ struct Reader {
   }
   void reals(const char* s, const char* k, std::vector<double>& out) { r.read(s, k, out); }
   void texts(const char* s, const char* k, std::vector<std::string>& out) { r.read(s, k, out); }
+  // Seconds (a number above 0), or text parseDuration reads ("10m").
+  void duration(const char* s, const char* k, double& out) {
+    const toml::node* n = node(s, k);
+    if (n != nullptr && n->is_string()) {
+      std::string text;
+      r.read(s, k, text);
+      out = parseDuration(text, r.where(s, k));
+      return;
+    }
+    r.read(s, k, out, 0.0, 1e9);
+    require(n == nullptr || out > 0.0,
+            dotted(s, k) + " must be above 0 (seconds, or text such as \"10m\")", r.where(s, k));
+  }
   void boolean(const char* s, const char* k, bool& out) { r.read(s, k, out); }
   void params(const char* s, std::map<std::string, std::string>& out) { r.readParams(s, out); }
   void measure(const char* s, const char* k, TrialMeasure& out) {
@@ -201,6 +216,9 @@ struct Writer {
   void reals(const char* s, const char* k, std::vector<double>& v) { w.write(s, k, v); }
   void texts(const char* s, const char* k, std::vector<std::string>& v) {
     if (!v.empty()) w.write(s, k, v);  // Configs without plug-ins keep their text.
+  }
+  void duration(const char* s, const char* k, double& v) {
+    if (v > 0.0) w.write(s, k, v);  // Configs without a budget keep their text.
   }
   void boolean(const char* s, const char* k, bool& v) { w.write(s, k, v); }
   void params(const char* s, std::map<std::string, std::string>& v) { w.writeParams(s, v); }

@@ -52,8 +52,20 @@ const char* kHeaderBefore =
 }  // namespace
 
 MethodVerdict methodVerdict(const std::vector<RunAssessment>& runs, const Summary& originalFinal,
-                            const Summary& originalArea) {
+                            const Summary& originalArea,
+                            const std::optional<NoLearningRow>& noLearning) {
   MethodVerdict v;
+  if (noLearning) {
+    v.noLearningAssessed = true;
+    v.originalVsNoLearning = welch(originalFinal, noLearning->final);
+    v.learnerHarms =
+        v.originalVsNoLearning.welchP < 0.05 && originalFinal.mean < noLearning->final.mean;
+    for (const auto& r : runs) {
+      if (r.returned != "discovered") continue;
+      const auto c = welch(r.final, noLearning->final);
+      if (!(c.welchP < 0.05 && r.final.mean > noLearning->final.mean)) ++v.discoveredNoBetter;
+    }
+  }
   v.runs = static_cast<int>(runs.size());
   for (const auto& r : runs) {
     const double finalDifference = r.final.mean - originalFinal.mean;
@@ -68,8 +80,34 @@ MethodVerdict methodVerdict(const std::vector<RunAssessment>& runs, const Summar
   return v;
 }
 
+std::string noLearningSentence(const MethodVerdict& v) {
+  if (!v.noLearningAssessed) return {};
+  std::string text =
+      v.learnerHarms
+          ? fmt::format(
+                "The learner harms: on the original variables it ends worse than no learning (a "
+                "policy that ignores the state; Welch p = {:.3g}); its step sizes or budget need "
+                "changing, and a gain over the original variables says little.",
+                v.originalVsNoLearning.welchP)
+          : fmt::format(
+                "The original variables end {} no learning (a policy that ignores the state; "
+                "Welch p = {:.3g}).",
+                v.originalVsNoLearning.welchT > 0 && v.originalVsNoLearning.welchP < 0.05
+                    ? "better than"
+                    : "not significantly different from",
+                v.originalVsNoLearning.welchP);
+  if (v.discoveredNoBetter > 0) {
+    text += fmt::format(
+        " {} of {} runs returned a discovered set that ends no better than no learning (Welch p "
+        ">= 0.05 or a lower mean).",
+        v.discoveredNoBetter, v.runs);
+  }
+  return text;
+}
+
 std::string formatMethodCsv(const std::vector<RunAssessment>& runs, const Summary& originalFinal,
-                            const Summary& originalArea) {
+                            const Summary& originalArea,
+                            const std::optional<NoLearningRow>& noLearning) {
   std::string csv = std::string(kHeader) + "\n";
   for (const auto& r : runs) {
     csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.run, r.seed, r.returned,
@@ -80,11 +118,18 @@ std::string formatMethodCsv(const std::vector<RunAssessment>& runs, const Summar
   }
   csv += fmt::format("original,,,,,,0,0,0,0,0,0,{},{},1,1,1,1\n", summaryFields(originalFinal),
                      summaryFields(originalArea));
+  if (noLearning) {
+    csv += fmt::format("no-learning,,,,,,0,0,0,0,0,0,{},{},{},nan,{},nan\n",
+                       summaryFields(noLearning->final), summaryFields(noLearning->area),
+                       welch(noLearning->final, originalFinal).welchP,
+                       welch(noLearning->area, originalArea).welchP);
+  }
   return csv;
 }
 
 std::vector<RunAssessment> parseMethodCsv(const std::string& text, const std::string& source,
-                                          Summary& originalFinal, Summary& originalArea) {
+                                          Summary& originalFinal, Summary& originalArea,
+                                          std::optional<NoLearningRow>* noLearning) {
   std::vector<RunAssessment> runs;
   std::stringstream in(text);
   std::string line;
@@ -99,6 +144,10 @@ std::vector<RunAssessment> parseMethodCsv(const std::string& text, const std::st
       if (cells[0] == "original") {
         originalFinal = summaryFrom(cells, 12);
         originalArea = summaryFrom(cells, 15);
+        continue;
+      }
+      if (cells[0] == "no-learning") {
+        if (noLearning) *noLearning = NoLearningRow{summaryFrom(cells, 12), summaryFrom(cells, 15)};
         continue;
       }
       RunAssessment r;

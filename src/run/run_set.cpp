@@ -42,15 +42,25 @@ RunOutcome outcomeOf(const Discovery& discovery, int run) {
   o.vsOriginal = comparePaired(*reported.returned, *reported.original);
   o.features = o.originalWon ? dim : sets[returned].genome.featureCount();
   o.size = sets[returned].size(dim);
+  o.noLearning = noLearningVerdict(discovery.validation(), dim);
   return o;
 }
 
 std::string formatRunsCsv(const std::vector<RunOutcome>& outcomes) {
   std::string csv =
       "run,seed,gp_best,returned,features,size,reported_mean,reported_se,original_mean,"
-      "original_se,difference,p_vs_original,scored_by\n";
+      "original_se,difference,p_vs_original,scored_by,no_learning_mean,no_learning_se,"
+      "original_vs_no_learning,p_original_vs_no_learning,learner_harms,no_better_than_no_learning"
+      "\n";
   for (const auto& o : outcomes) {
-    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", o.run, o.seed, o.gpBest,
+    const auto& n = o.noLearning;
+    // Empty where no-learning was not scored (no validation, or a run made before it existed).
+    const std::string reference =
+        n.scored ? fmt::format("{},{},{},{},{},{}", n.noLearning.mean, n.noLearning.standardError(),
+                               n.original.meanDifference, n.original.p, n.learnerHarms ? 1 : 0,
+                               n.winnerNoBetter ? 1 : 0)
+                 : std::string(",,,,,");
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", o.run, o.seed, o.gpBest,
                        !o.validated    ? "gp-best"
                        : o.originalWon ? "original"
                                        : "discovered",
@@ -58,7 +68,8 @@ std::string formatRunsCsv(const std::vector<RunOutcome>& outcomes) {
                        o.original.standardError(), o.vsOriginal.meanDifference, o.vsOriginal.p,
                        !o.validated  ? "gp"
                        : o.confirmed ? "confirmation"
-                                     : "validation");
+                                     : "validation",
+                       reference);
   }
   return csv;
 }

@@ -35,4 +35,12 @@ bool endsAtLook(const PairedComparison& difference, int look, int looks) {
   return look == looks || difference.p < nominalLevel(look, looks);
 }
 
+bool confirmationEndsAtLook(const PairedComparison& vsOriginal,
+                            const PairedComparison* vsNoLearning, int look, int looks) {
+  if (look == looks) return true;
+  if (!endsAtLook(vsOriginal, look, looks)) return false;
+  return vsNoLearning == nullptr || vsOriginal.meanDifference < 0.0 ||
+         endsAtLook(*vsNoLearning, look, looks);
+}
+
 }  // namespace gpfd::run

@@ -23,12 +23,10 @@ Summary summarize(const std::vector<double>& values) {
   return s;
 }
 
-Comparison compare(const std::vector<double>& a, const std::vector<double>& b) {
+Comparison welch(const Summary& sa, const Summary& sb) {
   Comparison c;
-  const Summary sa = summarize(a), sb = summarize(b);
   const double na = sa.n, nb = sb.n;
   if (sa.n < 2 || sb.n < 2) return c;
-
   // Welch (1947): t = (ma - mb) / sqrt(va/na + vb/nb), Welch-Satterthwaite degrees of freedom.
   const double va = sa.stddev * sa.stddev / na, vb = sb.stddev * sb.stddev / nb;
   if (va + vb > 0) {
@@ -39,6 +37,14 @@ Comparison compare(const std::vector<double>& a, const std::vector<double>& b) {
   } else {
     c.welchP = sa.mean == sb.mean ? 1.0 : 0.0;
   }
+  return c;
+}
+
+Comparison compare(const std::vector<double>& a, const std::vector<double>& b) {
+  const Summary sa = summarize(a), sb = summarize(b);
+  const double na = sa.n, nb = sb.n;
+  if (sa.n < 2 || sb.n < 2) return {};
+  Comparison c = welch(sa, sb);
   const double pooled = std::sqrt(
       ((na - 1) * sa.stddev * sa.stddev + (nb - 1) * sb.stddev * sb.stddev) / (na + nb - 2));
   c.cohenD = pooled > 0 ? (sa.mean - sb.mean) / pooled : 0.0;

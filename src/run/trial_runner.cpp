@@ -22,6 +22,12 @@ TrialFeatures TrialFeatures::fourier(int order) {
   return features;
 }
 
+TrialFeatures TrialFeatures::noLearning() {
+  TrialFeatures features;
+  features.kind = Kind::NoLearning;
+  return features;
+}
+
 std::shared_ptr<const features::FeatureMap> TrialFeatures::map(const LearningTask& task) const {
   switch (kind) {
     case Kind::Original:
@@ -30,6 +36,8 @@ std::shared_ptr<const features::FeatureMap> TrialFeatures::map(const LearningTas
       return genomeFeatureMap(genome, task.stateDim(), withOriginal);
     case Kind::Fourier:
       return fourierBasis(task, fourierOrder);
+    case Kind::NoLearning:
+      return std::make_shared<const features::ZeroFeatureMap>(task.stateDim());
   }
   throw std::logic_error("unknown kind of trial features");
 }

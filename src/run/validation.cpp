@@ -21,6 +21,10 @@ expr::Genome identityGenome(std::size_t stateDim) {
   return genome;
 }
 
+// The no-learning row's description in the tables.
+const char* const kNoLearningText =
+    "no learning: one feature, always 0 (a policy that ignores the state)";
+
 std::string featuresText(const ValidatedSet& set, const std::vector<std::string>& names) {
   if (set.isOriginal()) return "original variables";
   std::string text;
@@ -80,6 +84,20 @@ std::vector<HallOfFameEntry> hallOfFame(const std::map<std::string, gp::FitnessR
 bool Confirmation::held() const {
   return !key.empty() && comparePaired(winner, original).meanDifference > 0.0;
 }
+
+namespace {
+
+// Whether `scores` are significantly better than `noLearning` on the same seeds at `level`; true
+// when no-learning was not scored.
+bool beats(const std::vector<double>& scores, const std::vector<double>& noLearning, double level) {
+  if (noLearning.empty()) return true;
+  const auto paired = comparePaired(scores, noLearning);
+  return paired.meanDifference > 0.0 && paired.p < level;
+}
+
+}  // namespace
+
+bool Confirmation::beatsNoLearning() const { return beats(winner, noLearning, noLearningLevel); }
 
 Validator::Validator(const ExperimentConfig& config, TrialRunner& runner, std::uint64_t stream)
     : Validator(config, runner, LearningTask::Budget::Validation, config.validation.seeds, stream) {
@@ -156,23 +174,49 @@ bool confirmsWinner(const ValidationState& state, std::size_t stateDim) {
 
 std::size_t returnedIndex(const ValidationState& state, std::size_t stateDim) {
   const std::size_t winner = chooseWinner(state.sets, stateDim);
-  // A confirmed original-variables winner does not hold either, and is its own fallback.
-  return confirmsWinner(state, stateDim) && !state.confirmation.held() ? originalIndex(state.sets)
-                                                                       : winner;
+  if (state.sets[winner].isOriginal()) return winner;
+  const auto& confirmation = state.confirmation;
+  const bool holds = confirmsWinner(state, stateDim)
+                         ? confirmation.held() && confirmation.beatsNoLearning()
+                         : beats(state.sets[winner].scores, state.noLearning, 0.05);
+  return holds ? winner : originalIndex(state.sets);
 }
 
 ReportedScores reportedScores(const ValidationState& state, std::size_t stateDim) {
   const auto& confirmation = state.confirmation;
+  const std::size_t returned = returnedIndex(state, stateDim);
   if (!confirmsWinner(state, stateDim)) {
-    return {&state.sets[returnedIndex(state, stateDim)].scores,
-            &state.sets[originalIndex(state.sets)].scores, false};
+    return {&state.sets[returned].scores, &state.sets[originalIndex(state.sets)].scores, false,
+            &state.noLearning};
   }
-  return {confirmation.held() ? &confirmation.winner : &confirmation.original,
-          &confirmation.original, true};
+  return {state.sets[returned].isOriginal() ? &confirmation.original : &confirmation.winner,
+          &confirmation.original, true, &confirmation.noLearning};
+}
+
+NoLearningVerdict noLearningVerdict(const ValidationState& state, std::size_t stateDim) {
+  NoLearningVerdict v;
+  const auto reported = reportedScores(state, stateDim);
+  if (reported.noLearning->empty()) return v;
+  v.scored = true;
+  v.noLearning = summarize(*reported.noLearning);
+  v.original = comparePaired(*reported.original, *reported.noLearning);
+  v.learnerHarms = v.original.p < 0.05 && v.original.meanDifference < 0.0;
+  const auto& winner = state.sets[chooseWinner(state.sets, stateDim)];
+  if (winner.isOriginal()) return v;
+  const auto& confirmation = state.confirmation;
+  const bool confirmed = confirmsWinner(state, stateDim);
+  v.winner = confirmed ? comparePaired(confirmation.winner, confirmation.noLearning)
+                       : comparePaired(winner.scores, state.noLearning);
+  // Turned back by no learning alone: it held against the original variables (or was not
+  // confirmed) and was not returned.
+  v.winnerNoBetter = (!confirmed || confirmation.held()) &&
+                     state.sets[returnedIndex(state, stateDim)].isOriginal();
+  return v;
 }
 
 std::string formatValidationCsv(const std::vector<ValidatedSet>& sets, std::size_t returned,
-                                const std::vector<std::string>& stateNames) {
+                                const std::vector<std::string>& stateNames,
+                                const std::vector<double>& noLearning) {
   const std::size_t dim = stateNames.size();
   const auto& original = sets[originalIndex(sets)];
   std::string csv =
@@ -190,6 +234,13 @@ std::string formatValidationCsv(const std::vector<ValidatedSet>& sets, std::size
                        paired.meanDifference, s.isOriginal() ? 1.0 : paired.p,
                        i == returned ? 1 : 0, quoted(featuresText(s, stateNames)));
   }
+  if (!noLearning.empty()) {
+    const Summary summary = summarize(noLearning);
+    const auto paired = comparePaired(noLearning, original.scores);
+    csv += fmt::format(",no-learning,-1,1,1,nan,0,{},{},{},{},{},{},0,{}\n", summary.mean,
+                       summary.standardError(), summary.stddev, summary.n, paired.meanDifference,
+                       paired.p, quoted(kNoLearningText));
+  }
   return csv;
 }
 
@@ -199,21 +250,27 @@ std::string formatConfirmationCsv(const ValidationState& state,
   std::string csv =
       "set,mean,se,sd,seeds,difference_vs_original,p_vs_original,returned,expressions\n";
   if (!confirmation.done()) return csv;
-  const bool held = confirmation.held();
-  const auto row = [&](const ValidatedSet& set, const std::vector<double>& scores, bool returned) {
+  const bool held = confirmation.held() && confirmation.beatsNoLearning();
+  const auto row = [&](const char* name, const std::vector<double>& scores, bool original,
+                       bool returned, const std::string& text) {
     const Summary summary = summarize(scores);
     const auto paired = comparePaired(scores, confirmation.original);
-    csv += fmt::format(
-        "{},{},{},{},{},{},{},{},{}\n", set.isOriginal() ? "original" : "validation-winner",
-        summary.mean, summary.standardError(), summary.stddev, summary.n, paired.meanDifference,
-        set.isOriginal() ? 1.0 : paired.p, returned ? 1 : 0, quoted(featuresText(set, stateNames)));
+    csv += fmt::format("{},{},{},{},{},{},{},{},{}\n", name, summary.mean, summary.standardError(),
+                       summary.stddev, summary.n, paired.meanDifference, original ? 1.0 : paired.p,
+                       returned ? 1 : 0, quoted(text));
   };
   if (!confirmation.key.empty()) {
     for (const auto& set : state.sets) {
-      if (set.key == confirmation.key) row(set, confirmation.winner, held);
+      if (set.key == confirmation.key) {
+        row("validation-winner", confirmation.winner, false, held, featuresText(set, stateNames));
+      }
     }
   }
-  row(state.sets[originalIndex(state.sets)], confirmation.original, !held);
+  const auto& original = state.sets[originalIndex(state.sets)];
+  row("original", confirmation.original, true, !held, featuresText(original, stateNames));
+  if (!confirmation.noLearning.empty()) {
+    row("no-learning", confirmation.noLearning, false, false, kNoLearningText);
+  }
   return csv;
 }
 
@@ -320,23 +377,43 @@ expr::FeaturesFile returnedFeaturesFile(const ValidationState& state, const expr
       set.scores.size());
   file.meta["original"] = formatMeanSe(summarize(*reported.original));
   const std::string seeds = reported.confirmed ? "the confirmation seeds" : "the validation seeds";
+  const auto reference = noLearningVerdict(state, dim);
+  if (reference.scored) file.meta["no_learning"] = formatMeanSe(reference.noLearning);
+  if (reference.learnerHarms) {
+    file.meta["warning"] = fmt::format(
+        "the learner harms: on the original variables it does worse than no learning (a policy "
+        "that ignores the state) on {} by {:.4g} (paired t-test p = {:.3g}); its step sizes or "
+        "budget need changing",
+        seeds, -reference.original.meanDifference, reference.original.p);
+  }
   if (set.isOriginal()) {
     const bool confirmationFailed = state.confirmation.done() && !state.confirmation.key.empty();
-    file.meta["verdict"] =
-        confirmationFailed
-            ? fmt::format(
-                  "the validation winner did not beat the original variables on the confirmation "
-                  "seeds (difference {:.4g}); these are the original variables",
-                  comparePaired(state.confirmation.winner, state.confirmation.original)
-                      .meanDifference)
-            : "no discovered feature set beat the original variables on the validation seeds; "
-              "these are the original variables";
+    if (reference.winnerNoBetter) {
+      file.meta["verdict"] = fmt::format(
+          "the validation winner is not significantly better than no learning on {} "
+          "(difference {:.4g}, paired t-test p = {:.3g}): not a discovery; these are the "
+          "original variables",
+          seeds, reference.winner.meanDifference, reference.winner.p);
+    } else {
+      file.meta["verdict"] =
+          confirmationFailed
+              ? fmt::format(
+                    "the validation winner did not beat the original variables on the "
+                    "confirmation seeds (difference {:.4g}); these are the original variables",
+                    comparePaired(state.confirmation.winner, state.confirmation.original)
+                        .meanDifference)
+              : "no discovered feature set beat the original variables on the validation seeds; "
+                "these are the original variables";
+    }
     return file;
   }
   file.meta["gp_fitness"] = fmt::format("{}", set.gpFitness);
   file.meta["gp_trials"] = std::to_string(set.gpTrials);
   file.meta["verdict"] = comparisonVerdict(comparePaired(*reported.returned, *reported.original),
                                            "the original variables", seeds);
+  if (reference.scored) {
+    file.meta["verdict"] += "; " + comparisonVerdict(reference.winner, "no learning", seeds);
+  }
   if (config.normalise) file.meta["normalised"] = "each feature scaled on sampled states";
   return file;
 }

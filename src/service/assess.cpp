@@ -17,6 +17,9 @@
 namespace gpfd::service {
 namespace {
 
+// The name of the no-learning reference's row (a policy that cannot depend on the state).
+constexpr const char* kNoLearning = "no-learning";
+
 // The config of an assessment: the given config's learner (or the environment's default), its
 // params routed to the environment or the long budget.
 run::ExperimentConfig assessConfig(const AssessRequest& r) {
@@ -72,7 +75,9 @@ std::vector<run::FeatureSet> featureSets(const AssessRequest& r, const run::Lear
         source.name.empty() ? std::filesystem::path(source.path).stem().string() : source.name;
     for (const auto& s : sets) {
       // append, not +: GCC 12 gives a false -Wrestrict on "-" + std::string (GCC bug 105329).
-      if (s.name == name) name.append("-").append(std::to_string(sets.size()));
+      if (s.name == name || name == kNoLearning) {
+        name.append("-").append(std::to_string(sets.size()));
+      }
     }
     // Compiled once here, so that a genome past the compiler's limits is the user's input, named
     // as such, before anything is written.
@@ -93,6 +98,9 @@ std::vector<run::FeatureSet> featureSets(const AssessRequest& r, const run::Lear
   if (r.fourier > 0) sets.push_back(run::fourierFeatureSet(task, r.fourier));
   if (sets.empty())
     throw InputError("nothing to assess: give features or the raw variables", r.where);
+  // The no-learning reference, last: runs seeded (seed, its index, run), leaving every other
+  // set's seeds as they are.
+  sets.push_back({kNoLearning, run::TrialFeatures::noLearning()});
   return sets;
 }
 

@@ -2,9 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <chrono>
 #include <filesystem>
 
 #include "gpfd/expr/genome.hpp"
+#include "gpfd/run/time_budget.hpp"
 #include "gpfd/service/configs.hpp"
 #include "gpfd/service/resources.hpp"
 #include "gpfd/util/atomic_file.hpp"
@@ -37,15 +39,22 @@ bool runOne(run::Discovery& discovery, const std::string& dir, const std::string
 }
 
 // Runs (or continues) runs 1..runs of `base` in options.outDir, then sums them up.
+// With a time budget (options.deadline: run 1's), run r's deadline is r - 1 shares of
+// `perRunSeconds` later.
 EvolveResult runSet(const run::ExperimentConfig& base, int runs,
                     const run::DiscoveryOptions& options, std::optional<int> generations,
-                    EvolveProgress& progress, const std::atomic<bool>& stop) {
+                    EvolveProgress& progress, const std::atomic<bool>& stop,
+                    double perRunSeconds = 0.0) {
   EvolveResult result{options.outDir, false, {}};
   for (int r = 1; r <= runs; ++r) {
     run::ExperimentConfig config = base;
     config.seed = run::runSeed(base.seed, r);
     run::DiscoveryOptions one = options;
     one.outDir = options.outDir + "/" + run::runDirName(r, runs);
+    if (options.deadline) {
+      *one.deadline += std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+          std::chrono::duration<double>((r - 1) * perRunSeconds));
+    }
     const DirectoryLock lock = lockDirectory(one.outDir);  // Also against a resume of it.
     const auto discovery = openRun(config, one, generations);
     const std::string label = fmt::format("[run {}/{}] ", r, runs);
@@ -58,6 +67,49 @@ EvolveResult runSet(const run::ExperimentConfig& base, int runs,
   return result;
 }
 
+// The config a resume is checked against: a config with a time budget stands for the sizes
+// that the budget chose when the run started (stored in DIR/config.toml).
+std::optional<run::ExperimentConfig> expectedConfig(const EvolveRequest& request,
+                                                    const std::string& dir) {
+  if (request.config.empty()) return std::nullopt;
+  auto expected = loadConfig(request.config, {});
+  const std::string stored = dir + "/config.toml";
+  if (expected.timeBudget > 0.0 && fs::exists(stored)) {
+    const auto chosen = run::loadExperimentConfig(stored);
+    run::BudgetSizes sizes;
+    sizes.population = chosen.gp.population;
+    sizes.generations = chosen.gp.generations;
+    sizes.candidates = chosen.validation.candidates;
+    sizes.seeds = chosen.validation.seeds;
+    sizes.confirmSeeds = chosen.validation.confirmSeeds;
+    expected = run::withSizes(expected, sizes);
+  }
+  return expected;
+}
+
+// Sizes `config` to its time budget (run/time_budget.hpp), measuring as the run will evaluate;
+// says what it chose and records it for run.json.
+run::ExperimentConfig sizeToBudget(const run::ExperimentConfig& config, int runs,
+                                   run::DiscoveryOptions& options, double& perRunSeconds,
+                                   EvolveProgress& progress) {
+  const std::string where = "time_budget (--time-budget)";
+  if (options.processes > 1) {
+    throw InputError("a time budget is not measured under MPI: give the sizes instead", where);
+  }
+  const auto costs = run::measureCosts(config, options, run::kMeasureShare * config.timeBudget);
+  const auto sizes =
+      run::sizeToBudget(config, costs, (config.timeBudget - costs.seconds) / runs, where);
+  progress.budgetSized(run::budgetText(config.timeBudget, costs, sizes, runs));
+  options.timeBudgetJson = run::budgetJson(config.timeBudget, costs, sizes);
+  // Run r of a set ends by r shares of the budget after the measurement.
+  perRunSeconds = (config.timeBudget - costs.seconds) / runs;
+  options.deadline = std::chrono::steady_clock::now() +
+                     std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                         std::chrono::duration<double>(perRunSeconds));
+  options.finishSeconds = sizes.finishSeconds;
+  return run::withSizes(config, sizes);
+}
+
 EvolveResult resume(const EvolveRequest& request, run::DiscoveryOptions options,
                     EvolveProgress& progress, const std::atomic<bool>& stop) {
   const std::string& dir = request.resume;
@@ -67,10 +119,9 @@ EvolveResult resume(const EvolveRequest& request, run::DiscoveryOptions options,
         "of threads may be given",
         "resume " + dir);
   }
-  std::optional<run::ExperimentConfig> expected;
-  if (!request.config.empty()) expected = loadConfig(request.config, {});
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw InputError("no such results directory", "resume " + dir);
+  const auto expected = expectedConfig(request, dir);
   const DirectoryLock lock = lockDirectory(dir);
   options.outDir = dir;
   const std::string runsJson = dir + "/runs.json";
@@ -131,7 +182,12 @@ EvolveResult evolve(const EvolveRequest& request, EvolveProgress& progress,
   if (request.generations) {
     overrides.push_back("gp.generations=" + std::to_string(*request.generations));
   }
-  const auto config = loadConfig(request.config, overrides);
+  auto config = loadConfig(request.config, overrides);
+  const int runs = request.runs.value_or(1);
+  double perRunSeconds = 0.0;  // A time budget's share of each run.
+  if (config.timeBudget > 0.0) {
+    config = sizeToBudget(config, runs, options, perRunSeconds, progress);
+  }
   // Parents and offspring with every genome at its size limits.
   requireMemory(2.0 * config.gp.population * config.limits.maxFeatures * config.limits.maxSize *
                     static_cast<double>(sizeof(expr::Node)),
@@ -147,7 +203,6 @@ EvolveResult evolve(const EvolveRequest& request, EvolveProgress& progress,
   // A directory holding a run or a set is resumed, never started over, even with force.
   DirectoryLock lock = claimResultsDirectory(request.out, name, run::refuseExistingRuns);
   options.outDir = lock.directory();
-  const int runs = request.runs.value_or(1);
   if (runs == 1) {
     std::unique_ptr<run::Discovery> discovery;
     try {
@@ -171,7 +226,7 @@ EvolveResult evolve(const EvolveRequest& request, EvolveProgress& progress,
   createDirectories(options.outDir, "results directory");
   writeFileAtomically(options.outDir + "/config.toml", run::formatExperimentConfig(config));
   writeFileAtomically(options.outDir + "/runs.json", run::formatRunsJson(config.seed, runs));
-  return runSet(config, runs, options, std::nullopt, progress, stop);
+  return runSet(config, runs, options, std::nullopt, progress, stop, perRunSeconds);
 }
 
 }  // namespace gpfd::service

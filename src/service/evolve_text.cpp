@@ -123,6 +123,13 @@ void EvolveText::runFinished(const run::RunOutcome& o, const std::string& dir,
     o_.out(fmt::format(
         "{}best fitness {} (GP's own estimate, not validated); features in {}/best.features\n",
         label, o.gpBest, dir));
+  } else if (o.originalWon && o.noLearning.winnerNoBetter) {
+    o_.out(fmt::format(
+        "{}the validation winner is not significantly better than no learning on the {} seeds "
+        "(difference {:.4g}, p = {:.3g}): not a discovery; {}/best.features holds the original "
+        "variables\n",
+        label, o.confirmed ? "confirmation" : "validation", o.noLearning.winner.meanDifference,
+        o.noLearning.winner.p, dir));
   } else if (o.originalWon) {
     o_.out(
         fmt::format("{}no discovered feature set beat the original variables on {} (original {}); "
@@ -139,16 +146,25 @@ void EvolveText::runFinished(const run::RunOutcome& o, const std::string& dir,
                                o.confirmed ? "the confirmation seeds" : "the validation seeds"),
         dir));
   }
+  if (o.validated && o.noLearning.learnerHarms) {
+    o_.out(fmt::format(
+        "{}warning: the learner harms: the original variables ({}) do worse than no learning, a "
+        "policy that ignores the state ({}; p = {:.3g}); its step sizes or budget need "
+        "changing\n",
+        label, meanSe(o.original), meanSe(o.noLearning.noLearning), o.noLearning.original.p));
+  }
 }
 
 void EvolveText::setFinished(const std::vector<run::RunOutcome>& outcomes, const std::string& dir) {
   if (o_.quiet) return;
-  int discovered = 0, significant = 0;
+  int discovered = 0, significant = 0, harms = 0, noBetter = 0;
   bool confirmed = false;
   std::vector<double> differences;
   for (const auto& o : outcomes) {
     if (!o.validated) continue;
     confirmed = confirmed || o.confirmed;
+    harms += o.noLearning.learnerHarms ? 1 : 0;
+    noBetter += o.noLearning.winnerNoBetter ? 1 : 0;
     differences.push_back(o.vsOriginal.meanDifference);
     if (o.originalWon) continue;
     ++discovered;
@@ -166,6 +182,23 @@ void EvolveText::setFinished(const std::vector<run::RunOutcome>& outcomes, const
       "results in {}/runs.csv\n",
       outcomes.size(), confirmed ? "confirmation" : "validation", discovered, significant,
       test.median, test.p, dir));
+  if (noBetter > 0) {
+    o_.out(fmt::format(
+        "{} of {} runs' winners were not significantly better than no learning: not returned as "
+        "discoveries\n",
+        noBetter, outcomes.size()));
+  }
+  if (harms > 0) {
+    o_.out(fmt::format(
+        "warning: the learner harms in {} of {} runs: on the original variables it does worse "
+        "than no learning, a policy that ignores the state (p < 0.05); its step sizes or budget "
+        "need changing\n",
+        harms, outcomes.size()));
+  }
+}
+
+void EvolveText::budgetSized(const std::string& text) {
+  if (!o_.quiet) o_.out(text);
 }
 
 void EvolveText::alreadyComplete(const std::string& dir, int generations) {

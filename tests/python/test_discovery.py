@@ -151,8 +151,8 @@ def test_assess_returns_the_statistics_table(cli, tmp_path):
     table = gpfd.assess(
         str(features), env="cartpole", runs=4, budget=5, seed=3, out=tmp_path / "py", as_frame=False
     )
-    assert list(table["set"]) == ["original", "f"]
-    assert all(isinstance(v, np.ndarray) and len(v) == 2 for v in table.values())
+    assert list(table["set"]) == ["original", "f", "no-learning"]  # The reference last.
+    assert all(isinstance(v, np.ndarray) and len(v) == 3 for v in table.values())
     run_cli(
         cli,
         "assess",

@@ -117,7 +117,7 @@ def test_assess_runs_on_the_workers_with_the_same_table(tmp_path):
     workers = {pid for pid in resets(log) if pid != os.getpid()}
     assert workers
     one = gpfd.assess(fs, **common, threads=1)
-    assert list(one["set"]) == list(two["set"]) == ["original", "features"]
+    assert list(one["set"]) == list(two["set"]) == ["original", "features", "no-learning"]
     for key in one.keys() - {"set"}:
         assert np.array_equal(one[key], two[key], equal_nan=True), key
 

@@ -43,9 +43,11 @@ TEST(Evolve, WritesTheResultsDirectory) {
   EXPECT_NE(best.find("# confirmed: "), std::string::npos);
   EXPECT_NE(best.find("(30 trials)"), std::string::npos);
   EXPECT_NE(best.find("# verdict: "), std::string::npos);
-  // Hall of fame (10) and the original variables, each on its own line.
+  // Hall of fame (10), the original variables and the no-learning reference (last), each on its
+  // own line.
   const auto validation = readText(dir + "/validation.csv");
-  EXPECT_EQ(std::count(validation.begin(), validation.end(), '\n'), 12);
+  EXPECT_EQ(std::count(validation.begin(), validation.end(), '\n'), 13);
+  EXPECT_NE(validation.find("\n,no-learning,"), std::string::npos);
   EXPECT_NE(validation.find(",original,"), std::string::npos);
   // The complexity front, and the run directory as a stand-in for its best.features.
   const auto front = runGpfd("features show " + dir + " --front");
@@ -154,8 +156,8 @@ TEST(Evolve, RunsMakeASetThatResumes) {
   ASSERT_EQ(r.status, 0) << r.output;
   const auto runs = readText(dir + "/runs.csv");
   EXPECT_EQ(std::count(runs.begin(), runs.end(), '\n'), 4);
-  EXPECT_NE(runs.find(",p_vs_original,scored_by\n"), std::string::npos) << runs;
-  EXPECT_NE(runs.find(",confirmation\n"), std::string::npos) << runs;
+  EXPECT_NE(runs.find(",p_vs_original,scored_by,no_learning_mean,"), std::string::npos) << runs;
+  EXPECT_NE(runs.find(",confirmation,"), std::string::npos) << runs;
   // Run 1 is the single run with the set's seed.
   const auto single = freshDir("evolve-runs-single");
   ASSERT_EQ(runGpfd("evolve " + tinyConfig() + " --generations 3 --quiet --out " + single).status,

@@ -32,6 +32,21 @@ TEST(SequentialTest, NominalLevelsAreOBrienFlemings) {
   }
 }
 
+// With the no-learning reference, an early end needs a decision that more seeds would not
+// change: the winner lost to the original variables, or it clearly differs from both.
+TEST(SequentialTest, AConfirmationEndsEarlyOnlyWhenNoLearningIsDecidedToo) {
+  const PairedComparison better{10, 2.0, 0.2, 0.0001}, worse{10, -2.0, 0.2, 0.0001},
+      close{10, 0.5, 0.2, 0.03};
+  EXPECT_TRUE(confirmationEndsAtLook(better, &better, 1, 3));
+  EXPECT_TRUE(confirmationEndsAtLook(better, &worse, 1, 3));   // Clearly below no learning.
+  EXPECT_FALSE(confirmationEndsAtLook(better, &close, 1, 3));  // Undecided against it.
+  EXPECT_TRUE(confirmationEndsAtLook(worse, &close, 1, 3));    // Lost: nothing left to decide.
+  EXPECT_FALSE(confirmationEndsAtLook(close, &better, 2, 3));
+  EXPECT_TRUE(confirmationEndsAtLook(close, &close, 3, 3));    // The last look ends them.
+  EXPECT_TRUE(confirmationEndsAtLook(better, nullptr, 1, 3));  // Without it: as endsAtLook.
+  EXPECT_FALSE(confirmationEndsAtLook(close, nullptr, 1, 3));
+}
+
 TEST(SequentialTest, OnlyAClearDifferenceEndsEarly) {
   PairedComparison clear{10, 2.0, 0.2, 0.0001}, close{10, 0.5, 0.2, 0.03};
   EXPECT_TRUE(endsAtLook(clear, 1, 3));

@@ -87,7 +87,7 @@ TEST(Validation, ConfirmationDecidesAndIsWhatIsReported) {
   EXPECT_FALSE(reportedScores(state, 4).confirmed);
   EXPECT_EQ(reportedScores(state, 4).returned, &state.sets[1].scores);
 
-  state.confirmation = {state.sets[1].key, {2, 2.5, 3}, {2, 2, 2}};  // Holds: +0.5.
+  state.confirmation = {state.sets[1].key, {2, 2.5, 3}, {2, 2, 2}, {}, 0.05};  // Holds: +0.5.
   EXPECT_EQ(returnedIndex(state, 4), 1u);
   const auto held = reportedScores(state, 4);
   EXPECT_TRUE(held.confirmed);
@@ -105,6 +105,55 @@ TEST(Validation, ConfirmationDecidesAndIsWhatIsReported) {
   state.sets.push_back(set("dx", {5, 5, 5}));  // A new winner: the old confirmation is stale.
   EXPECT_EQ(returnedIndex(state, 4), 3u);
   EXPECT_FALSE(reportedScores(state, 4).confirmed);
+}
+
+// The no-learning reference (a policy that ignores the state) is never a candidate; a discovered
+// winner not significantly better than it is not returned; the original variables significantly
+// worse than it mean the learner harms.
+TEST(Validation, NoLearningIsAReferenceThatADiscoveryMustBeat) {
+  ValidationState state;
+  state.sets = {set("", {1, 2, 3, 1, 2, 3}), set("x", {5, 6, 7, 5, 6, 7}),
+                set("th", {0, 0, 0, 0, 0, 0})};
+  EXPECT_EQ(returnedIndex(state, 4), 1u);  // Not scored (a run made before it): as before.
+  EXPECT_FALSE(noLearningVerdict(state, 4).scored);
+  state.noLearning = {5, 6.1, 6.9, 5.1, 5.9, 7};  // Level with the winner, far above the original.
+  EXPECT_EQ(chooseWinner(state.sets, 4), 1u);     // Never a candidate itself.
+  EXPECT_EQ(returnedIndex(state, 4), 0u);
+  const auto verdict = noLearningVerdict(state, 4);
+  EXPECT_TRUE(verdict.scored);
+  EXPECT_TRUE(verdict.learnerHarms);
+  EXPECT_TRUE(verdict.winnerNoBetter);
+  EXPECT_EQ(reportedScores(state, 4).noLearning, &state.noLearning);
+
+  // validation.csv: the existing rows as without it, then the reference, unranked.
+  const auto without = formatValidationCsv(state.sets, 0, kNames);
+  const auto with = formatValidationCsv(state.sets, 0, kNames, state.noLearning);
+  ASSERT_EQ(with.substr(0, without.size()), without);
+  EXPECT_EQ(with.substr(without.size()).rfind(",no-learning,-1,1,1,nan,0,", 0), 0u) << with;
+  EXPECT_EQ(std::count(with.begin(), with.end(), '\n'), 5);
+
+  state.noLearning = {1, 1.5, 1, 1.2, 1, 1};  // Below both: the winner is a discovery.
+  EXPECT_EQ(returnedIndex(state, 4), 1u);
+  EXPECT_FALSE(noLearningVerdict(state, 4).learnerHarms);
+  EXPECT_FALSE(noLearningVerdict(state, 4).winnerNoBetter);
+
+  // Confirmed: the winner holds against the original variables but is level with no learning.
+  state.confirmation = {state.sets[1].key, {2, 2.5, 3}, {1, 1, 1.5}, {2, 2.5, 3}, 0.045};
+  EXPECT_TRUE(state.confirmation.held());
+  EXPECT_FALSE(state.confirmation.beatsNoLearning());
+  EXPECT_EQ(returnedIndex(state, 4), 0u);
+  const auto reported = reportedScores(state, 4);
+  EXPECT_EQ(reported.returned, &state.confirmation.original);
+  EXPECT_EQ(reported.noLearning, &state.confirmation.noLearning);
+  EXPECT_TRUE(noLearningVerdict(state, 4).winnerNoBetter);
+  const auto csv = formatConfirmationCsv(state, kNames);
+  EXPECT_NE(csv.find("validation-winner,2.5,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\noriginal,1.1666666666666667,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",1,\"original variables\"\nno-learning,2.5,"), std::string::npos) << csv;
+  // Clearly above it at the level of the last look: returned.
+  state.confirmation.noLearning = {0, 0.4, 1.1};
+  EXPECT_TRUE(state.confirmation.beatsNoLearning());
+  EXPECT_EQ(returnedIndex(state, 4), 1u);
 }
 
 TEST(Validation, TheReturnedFileLeavesPlaceholdersOut) {
@@ -148,7 +197,7 @@ TEST(Validation, TheReturnedFileNamesEachScoreByWhatItIs) {
             "(difference 1.167, paired t-test p = 0.118)");
 
   // Confirmed: the confirmation's scores stand beside the selection's; +5 at p < 0.001.
-  state.confirmation = {state.sets[1].key, {10, 12, 11, 14, 13}, {5, 6, 7, 8, 9}};
+  state.confirmation = {state.sets[1].key, {10, 12, 11, 14, 13}, {5, 6, 7, 8, 9}, {}, 0.05};
   file = returnedFeaturesFile(state, state.sets[1].genome, task);
   EXPECT_EQ(file.meta.at("confirmed"), "12 +- 0.707 (5 trials)");
   EXPECT_EQ(file.meta.at("confirmed_by").rfind("5 fresh seeds", 0), 0u);
@@ -199,6 +248,40 @@ TEST(MethodVerdict, CountsRunsAndReadsBack) {
   ASSERT_NE(before.find(renamed), std::string::npos);
   before.replace(before.find(renamed), renamed.size(), "validated_n,validated_mean,validated_sd");
   EXPECT_EQ(parseMethodCsv(before, "before.csv", readFinal, readArea).size(), 8u);
+}
+
+// The no-learning row of method-NAME.csv reads back, and the verdict names a harmful learner and
+// the runs whose discovered set ends no better than no learning.
+TEST(MethodVerdict, SaysWhereTheOriginalVariablesOrARunAreNoBetterThanNoLearning) {
+  const Summary originalFinal{20, 100, 10, 4}, originalArea{20, 50, 5, 2};
+  std::vector<RunAssessment> runs;
+  for (int r = 1; r <= 4; ++r) {
+    RunAssessment a;
+    a.run = r;
+    a.returned = r == 4 ? "original" : "discovered";
+    a.final = {20, r == 1 ? 150.0 : 131.0, 10, 4};  // Runs 2 and 3 level with no learning.
+    a.area = {20, 50, 5, 2};
+    runs.push_back(a);
+  }
+  const NoLearningRow noLearning{{20, 130, 10, 4}, {20, 40, 5, 2}};
+  const auto verdict = methodVerdict(runs, originalFinal, originalArea, noLearning);
+  EXPECT_TRUE(verdict.noLearningAssessed);
+  EXPECT_TRUE(verdict.learnerHarms);
+  EXPECT_EQ(verdict.discoveredNoBetter, 2);
+  EXPECT_NE(noLearningSentence(verdict).find("The learner harms"), std::string::npos);
+  EXPECT_NE(noLearningSentence(verdict).find("2 of 4 runs"), std::string::npos);
+  Summary readFinal, readArea;
+  std::optional<NoLearningRow> read;
+  const auto csv = formatMethodCsv(runs, originalFinal, originalArea, noLearning);
+  EXPECT_NE(csv.find("\nno-learning,,,,,,0,0,0,0,0,0,20,130,10,20,40,5,"), std::string::npos)
+      << csv;
+  EXPECT_EQ(parseMethodCsv(csv, "test", readFinal, readArea, &read).size(), 4u);
+  ASSERT_TRUE(read.has_value());
+  EXPECT_EQ(read->final.mean, 130.0);
+  EXPECT_EQ(read->area.stddev, 5.0);
+  // Without the reference (files made before it): nothing said.
+  EXPECT_FALSE(methodVerdict(runs, originalFinal, originalArea).noLearningAssessed);
+  EXPECT_EQ(noLearningSentence(methodVerdict(runs, originalFinal, originalArea)), "");
 }
 
 }  // namespace

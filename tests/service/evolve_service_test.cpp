@@ -108,8 +108,8 @@ TEST(EvolveService, AStoppedRunsFeaturesAreWhatTheLearnerSawAndSaySo) {
 
   const auto config = service::loadConfig(request.config, request.overrides);
   const run::LearningTask task(config, run::LearningTask::Budget::Trial);
-  auto resumed =
-      run::Discovery::resume({dir, 1, kVersion, "", {}, 1, {}}, std::nullopt, std::nullopt);
+  auto resumed = run::Discovery::resume({dir, 1, kVersion, "", {}, 1, {}, "", {}, 0.0},
+                                        std::nullopt, std::nullopt);
   const auto& best = resumed->history().at(0).bestGenome;
   for (const std::string name : {"best.features", "best/generation-0000.features"}) {
     const auto file = expr::readFeaturesFile(dir + "/" + name);
@@ -149,7 +149,7 @@ TEST(EvolveService, TheRunStageSaysWhatRunsAndHowFar) {
         {"gp.generations=2", "validation.candidates=3", "validation.seeds=4",
          "validation.confirm_seeds=" + std::to_string(confirmSeeds), "validation.confirm_looks=1"});
     const auto discovery =
-        run::Discovery::start(config, {freshDir(name), 1, kVersion, "", {}, 1, {}});
+        run::Discovery::start(config, {freshDir(name), 1, kVersion, "", {}, 1, {}, "", {}, 0.0});
     std::vector<run::RunStage> seen;
     std::vector<long> evaluated;
     const std::atomic<bool> stop{false};
@@ -171,13 +171,15 @@ TEST(EvolveService, TheRunStageSaysWhatRunsAndHowFar) {
     const auto& validation = discovery->validation();
     if (confirmSeeds == 0) {
       EXPECT_EQ(end.kind, run::RunStage::Validation);
-      // The original variables and the hall of fame, each on the 4 validation seeds.
-      EXPECT_EQ(end.total, static_cast<int>(validation.sets.size()) * 4);
+      // The original variables, the hall of fame and the no-learning reference, each on the 4
+      // validation seeds.
+      EXPECT_EQ(end.total, static_cast<int>(validation.sets.size() + 1) * 4);
       EXPECT_EQ(end.done, end.total);
       EXPECT_STREQ(run::stageName(end.kind), "validation");
     } else {
       EXPECT_EQ(end.kind, run::RunStage::Confirmation);
-      const int sets = validation.confirmation.key.empty() ? 1 : 2;
+      // The original variables, the winner unless it is them, and no learning.
+      const int sets = validation.confirmation.key.empty() ? 2 : 3;
       EXPECT_EQ(end.total, sets * 6);
       EXPECT_EQ(end.done, end.total);  // One look: every seed.
       EXPECT_EQ(static_cast<int>(validation.confirmation.original.size()), 6);

@@ -33,6 +33,29 @@ TEST(Number, RefusesAnythingElseNamingThePlace) {
   }
 }
 
+TEST(Number, DurationsAreSecondsOrUnitsLargestFirst) {
+  EXPECT_EQ(parseDuration("90", "w"), 90.0);
+  EXPECT_EQ(parseDuration("2.5", "w"), 2.5);
+  EXPECT_EQ(parseDuration("90s", "w"), 90.0);
+  EXPECT_EQ(parseDuration("10m", "w"), 600.0);
+  EXPECT_EQ(parseDuration(" 1h ", "w"), 3600.0);
+  EXPECT_EQ(parseDuration("1h30m", "w"), 5400.0);
+  EXPECT_EQ(parseDuration("1m30s", "w"), 90.0);
+  EXPECT_EQ(parseDuration("2.5m", "w"), 150.0);
+  for (const char* bad : {"", " ", "0", "0s", "-5", "10x", "m", "1m1h", "1m1m", "1h-30m", "inf",
+                          "1e999", "10 minutes", "s10"}) {
+    try {
+      parseDuration(bad, "--time-budget");
+      ADD_FAILURE() << "accepted '" << bad << "'";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.where(), "--time-budget");
+      EXPECT_NE(std::string(e.what()).find("a duration is seconds (90) or numbers with h, m or s"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 TEST(Number, RangesNameTheParameterAndTheRange) {
   EXPECT_EQ(parseNumber("1", 0.0, 1.0, "p", "w"), 1.0);
   try {

@@ -28,6 +28,9 @@ class FeatureMap {
   // Whether the features are the state variables themselves, in order (RawFeatureMap): a learner
   // may then start from weights known for the state (AfterstateGame::knownValueWeights).
   virtual bool isIdentity() const { return false; }
+  // Whether the features are the same for every state (ZeroFeatureMap): starting weights over
+  // the state's own features (AfterstateGame::knownValueWeights, given weights) do not apply.
+  virtual bool ignoresState() const { return false; }
 };
 
 // The raw state variables as features (the identity).
@@ -42,6 +45,21 @@ class RawFeatureMap final : public FeatureMap {
 
  private:
   std::size_t dim_;
+};
+
+// One feature that is always 0, whatever the state: what a learner sees when it is to learn
+// nothing from the state (run's "no-learning" reference). With its bias a linear learner can still
+// learn the best state-independent output; without one it keeps its initial policy.
+class ZeroFeatureMap final : public FeatureMap {
+ public:
+  explicit ZeroFeatureMap(std::size_t inputDim) : inputDim_(inputDim) {}
+  std::size_t inputDim() const override { return inputDim_; }
+  std::size_t outputDim() const override { return 1; }
+  void evaluate(const double* state, double* features) const override;
+  bool ignoresState() const override { return true; }
+
+ private:
+  std::size_t inputDim_;
 };
 
 // The outputs of several maps over the same state, side by side (e.g. discovered + original).

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -48,6 +49,15 @@ struct DiscoveryOptions {
   // Trains the validation and confirmation trials (e.g. the Python package's worker processes);
   // empty: a ThreadTrialRunner with `threads`. Whatever it is must give the same curves.
   std::shared_ptr<TrialRunner> trialRunner;
+  // What a time budget measured and chose (run/time_budget.hpp), as JSON: run.json's
+  // "time_budget"; empty: none.
+  std::string timeBudgetJson;
+  // A time budget's end: after each generation, gp.generations becomes the generations made and
+  // those that still fit before `deadline` (each as long as the longest of the last three),
+  // `finishSeconds` (validation and confirmation, predicted) kept free; written into config.toml
+  // and the checkpoint. Unset: none.
+  std::optional<std::chrono::steady_clock::time_point> deadline;
+  double finishSeconds = 0.0;
 };
 
 // InputError when `dir` already holds a run (checkpoint.json) or a set of runs (runs.json):

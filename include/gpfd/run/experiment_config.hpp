@@ -26,6 +26,13 @@ struct ExperimentConfig {
   // from the config file's directory, and stored absolute.
   std::vector<std::string> plugins;
 
+  // Seconds the whole `gpfd evolve` may take (`time_budget`: seconds, or text such as "10m");
+  // 0: none. When set, a fresh run measures what an evaluation costs, sizes the population and the
+  // validation, and ends its generations when the next one and validation would pass the budget
+  // (run/time_budget.hpp); the resolved config stores the sizes chosen (the generations made) and
+  // no budget, so that a resume, or the resolved config run again, gives the same run.
+  double timeBudget = 0.0;
+
   std::string env = "cartpole";
   std::map<std::string, std::string> envParams;
 

@@ -13,6 +13,7 @@
 
 #include "gpfd/run/discovery.hpp"
 #include "gpfd/run/statistics.hpp"
+#include "gpfd/run/validation.hpp"
 
 namespace gpfd::run {
 
@@ -31,6 +32,7 @@ struct RunOutcome {
   Summary winner, original;     // Reported scores of the returned set and the original variables.
   PairedComparison vsOriginal;  // winner - original on the same seeds.
   std::size_t features = 0, size = 0;
+  NoLearningVerdict noLearning;  // Against the no-learning reference (validated runs).
 };
 RunOutcome outcomeOf(const Discovery& discovery, int run);
 

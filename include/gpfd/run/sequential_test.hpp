@@ -24,4 +24,14 @@ double nominalLevel(int look, int looks);
 // Whether `difference` (the paired scores so far) ends the trials at look `look` of `looks`.
 bool endsAtLook(const PairedComparison& difference, int look, int looks);
 
+// Whether a confirmation's trials end at look `look` of `looks`, given the winner's paired
+// comparisons with the original variables and (null: not scored) with the no-learning reference:
+// at the last look; or where the winner clearly differs from the original variables
+// (endsAtLook) and either lost to them or also clearly differs from no learning, so that more
+// seeds would leave the decision as it is. Judging "better than no learning" at the last look's
+// nominal level, nominalLevel(looks, looks), is then the group-sequential test of that question
+// too: where the trials end early it has already passed the stricter level of that look.
+bool confirmationEndsAtLook(const PairedComparison& vsOriginal,
+                            const PairedComparison* vsNoLearning, int look, int looks);
+
 }  // namespace gpfd::run

@@ -29,6 +29,9 @@ struct Comparison {
 };
 // Compares sample a against sample b (each of size >= 2).
 Comparison compare(const std::vector<double>& a, const std::vector<double>& b);
+// Welch's t-test of a against b from their summaries alone (each n >= 2; else p = 1): the
+// welchT, welchDf and welchP of compare(), the rest left at their defaults.
+Comparison welch(const Summary& a, const Summary& b);
 
 // Paired comparison of a[i] with b[i] (same seeds): the mean difference, its standard error and
 // the two-sided p-value of Student's paired t-test. p = 1 for fewer than 2 pairs; with no spread

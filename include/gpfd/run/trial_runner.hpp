@@ -20,7 +20,10 @@ namespace gpfd::run {
 
 // A feature set as any process that holds the task's config can rebuild it.
 struct TrialFeatures {
-  enum class Kind { Original, Genome, Fourier };
+  // NoLearning: one feature that is always 0 (features::ZeroFeatureMap), the reference of a
+  // policy that cannot depend on the state (docs/discovery.md, "The no-learning reference").
+  enum class Kind { Original, Genome, Fourier, NoLearning };
+  static constexpr Kind kLastKind = Kind::NoLearning;
   Kind kind = Kind::Original;
   expr::Genome genome;        // Kind::Genome: as the learner sees it (LearningTask::prepared).
   bool withOriginal = false;  // Kind::Genome: the original variables appended.
@@ -29,10 +32,11 @@ struct TrialFeatures {
   static TrialFeatures original() { return {}; }
   static TrialFeatures ofGenome(expr::Genome genome, bool withOriginal);
   static TrialFeatures fourier(int order);
+  static TrialFeatures noLearning();
 
-  // The feature map: the raw state, genomeFeatureMap(genome, dim, withOriginal), or the task's
-  // Fourier basis. std::invalid_argument for a genome past the compiler's limits; InputError for
-  // a Fourier basis of an environment without typical state ranges.
+  // The feature map: the raw state, genomeFeatureMap(genome, dim, withOriginal), the task's
+  // Fourier basis, or a ZeroFeatureMap. std::invalid_argument for a genome past the compiler's
+  // limits; InputError for a Fourier basis of an environment without typical state ranges.
   std::shared_ptr<const features::FeatureMap> map(const LearningTask& task) const;
 };
 

@@ -43,18 +43,30 @@ struct Confirmation {
   std::string key;               // The validation winner's key; empty: the original variables won.
   std::vector<double> winner;    // The winner's scores, in seed order (empty when key is empty).
   std::vector<double> original;  // The original variables' scores on the same seeds.
+  // The no-learning reference on the same seeds (empty in runs made before it existed), and the
+  // level at which a discovered winner must beat it: the O'Brien-Fleming level of the last look
+  // (confirmationEndsAtLook, run/sequential_test.hpp).
+  std::vector<double> noLearning;
+  double noLearningLevel = 0.05;
 
   bool done() const { return !original.empty(); }
   // Whether a discovered winner holds: its mean difference from the original variables is > 0.
   bool held() const;
+  // Whether a discovered winner is significantly better than no learning (paired t-test p below
+  // noLearningLevel, difference > 0); true when no-learning was not scored.
+  bool beatsNoLearning() const;
 };
 
 // The validation stage's results so far.
 struct ValidationState {
   std::vector<ValidatedSet> sets;  // Every set validated, the original variables included.
-  Confirmation confirmation;       // Of the final choice; not done when confirm_seeds is 0.
-  int finalGeneration = -1;        // The last generation after which the winner was chosen.
-  double seconds = 0.0;            // Wall time spent validating and confirming.
+  // The no-learning reference (TrialFeatures::noLearning: the learner sees one feature that is
+  // always 0) on the validation seeds: a reference, never a candidate. Empty until first scored,
+  // and in runs made before it existed.
+  std::vector<double> noLearning;
+  Confirmation confirmation;  // Of the final choice; not done when confirm_seeds is 0.
+  int finalGeneration = -1;   // The last generation after which the winner was chosen.
+  double seconds = 0.0;       // Wall time spent validating and confirming.
 };
 
 // A member of the hall of fame: one of the best distinct genomes the cache has scored.
@@ -116,24 +128,45 @@ std::size_t chooseWinner(const std::vector<ValidatedSet>& sets, std::size_t stat
 // The index of the original variables in `sets`.
 std::size_t originalIndex(const std::vector<ValidatedSet>& sets);
 
-// What the run returns: the validation winner, or the original variables when the confirmation
-// of a discovered winner did not hold. An index into state.sets.
+// What the run returns: the validation winner, or the original variables when a discovered
+// winner did not hold on confirmation or is not significantly better than no learning (on the
+// confirmation seeds at Confirmation::noLearningLevel, else on the validation seeds at 0.05): a
+// set that only stops learning is never returned as a discovery. An index into state.sets.
 std::size_t returnedIndex(const ValidationState& state, std::size_t stateDim);
 
-// The scores that stand for the returned set and for the original variables: the confirmation's
-// when it was done (unbiased), else the validation's (biased upwards by the choice).
+// The scores that stand for the returned set, the original variables and the no-learning
+// reference: the confirmation's when it was done (unbiased), else the validation's (biased
+// upwards by the choice). `noLearning` is empty where it was not scored.
 struct ReportedScores {
   const std::vector<double>* returned;
   const std::vector<double>* original;
   bool confirmed;
+  const std::vector<double>* noLearning;
 };
 ReportedScores reportedScores(const ValidationState& state, std::size_t stateDim);
 
+// Where a run stands against the no-learning reference.
+struct NoLearningVerdict {
+  bool scored = false;        // False in runs made before the reference existed.
+  Summary noLearning;         // On the reported seeds.
+  PairedComparison original;  // Original variables - no learning, on the reported seeds.
+  bool learnerHarms = false;  // The original variables significantly worse (p < 0.05).
+  // A discovered validation winner not returned because it is not significantly better than no
+  // learning (though it held against the original variables, or was not confirmed), and its
+  // comparison (winner - no learning) on the seeds that decided it.
+  bool winnerNoBetter = false;
+  PairedComparison winner;
+};
+NoLearningVerdict noLearningVerdict(const ValidationState& state, std::size_t stateDim);
+
 // validation.csv: every set, best mean first, with its comparison to the original variables;
-// `selected` marks the set at index `returned`.
+// `selected` marks the set at index `returned`; then, unranked, the row `no-learning` when
+// `noLearning` holds its scores.
 std::string formatValidationCsv(const std::vector<ValidatedSet>& sets, std::size_t returned,
-                                const std::vector<std::string>& stateNames);
-// confirmation.csv: the confirmed sets (the winner, the original variables) and which is returned.
+                                const std::vector<std::string>& stateNames,
+                                const std::vector<double>& noLearning = {});
+// confirmation.csv: the confirmed sets (the winner, the original variables), which is returned,
+// and the row `no-learning` where it was scored.
 std::string formatConfirmationCsv(const ValidationState& state,
                                   const std::vector<std::string>& stateNames);
 // The complexity front: indices of the best validated set at each size, smallest first; a set
@@ -151,8 +184,10 @@ std::string formatFrontTable(const std::vector<ValidatedSet>& sets,
 // confirmation seeds, unbiased; only when the choice was confirmed) with `# confirmed_by`,
 // `# selection` (the mean over the validation seeds that chose among the candidates, biased
 // upwards for the winner) with `# selection_by`, `# original` (the original variables on the
-// seeds of the reported score: confirmation's, else validation's), `# gp_fitness` (the GP's own
-// estimate, biased; a discovered set only) and `# verdict`.
+// seeds of the reported score: confirmation's, else validation's), `# no_learning` (the
+// no-learning reference on those seeds), `# gp_fitness` (the GP's own estimate, biased; a
+// discovered set only), `# verdict`, and `# warning` when the learner harms (the original
+// variables significantly worse than no learning).
 expr::FeaturesFile returnedFeaturesFile(const ValidationState& state, const expr::Genome& prepared,
                                         const LearningTask& task);
 

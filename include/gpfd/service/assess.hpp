@@ -46,7 +46,9 @@ struct AssessResult {
   long runs = 0;     // Runs, over every set.
 };
 
-// Runs the request; `print` (optional) gets the header and the table as text. InputError, before
+// Runs the request; `print` (optional) gets the header and the table as text. Besides the sets
+// asked for (the original variables first, the baseline), every assessment trains the no-learning
+// reference (run::TrialFeatures::noLearning), the last row, named "no-learning". InputError, before
 // anything is written, for a bad request.
 AssessResult assess(const AssessRequest& request, const TextSink& print = {});
 

@@ -53,6 +53,8 @@ class EvolveProgress {
   virtual void setFinished(const std::vector<run::RunOutcome>&, const std::string& /*dir*/) {}
   // A resumed run that had nothing left to do.
   virtual void alreadyComplete(const std::string& /*dir*/, int /*generations*/) {}
+  // A time budget's measurement and the sizes it chose, in a line of text (before any run).
+  virtual void budgetSized(const std::string& /*text*/) {}
 };
 
 struct EvolveResult {

@@ -22,6 +22,11 @@ std::int64_t parseInteger(std::string_view text, const std::string& where);
 std::int64_t parseInteger(std::string_view text, std::int64_t lo, std::int64_t hi,
                           const std::string& name, const std::string& where);
 
+// A duration in seconds: a number of seconds ("90", "2.5"), or numbers each followed by h, m or s,
+// largest unit first ("90s", "10m", "1h", "1h30m", "2.5m"). Positive and finite. Throws
+// InputError("a duration is ..., not '<text>'", where) otherwise.
+double parseDuration(std::string_view text, const std::string& where);
+
 // The shortest text that parses back to exactly `value` ("0.2", "1e-05"), as defaults and
 // resolved parameters are printed.
 std::string numberText(double value);

@@ -1,0 +1,156 @@
+// A run sized to a time budget (run/time_budget.hpp): the sizes it chose are written into the
+// resolved config (and run.json), a resume continues with them, and the resolved config run
+// again gives the same run. No assertion here depends on how fast the machine is.
+#include "gpfd/run/time_budget.hpp"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_helpers.hpp"
+#include "gpfd/service/configs.hpp"
+#include "gpfd/service/evolve.hpp"
+#include "gpfd/util/error.hpp"
+
+namespace gpfd::testing {
+namespace {
+
+// Stops the run after its first generation (once its checkpoint is written).
+class StopAfterFirst final : public service::EvolveProgress {
+ public:
+  explicit StopAfterFirst(std::atomic<bool>& stop) : stop_(&stop) {}
+  void generationDone(const run::Discovery&, const run::GenerationRecord&,
+                      const std::string&) override {
+    stop_->store(true);
+  }
+  void budgetSized(const std::string& text) override { said += text; }
+  std::string said;
+
+ private:
+  std::atomic<bool>* stop_;
+};
+
+// A tiny cart-pole config with a budget of 4 s.
+std::string budgetConfig() {
+  return writeText("budget.toml", R"(name = "budget"
+seed = 5
+time_budget = "4s"
+[env]
+name = "cartpole"
+params = { max_steps = 200 }
+[learner]
+name = "pg"
+params = { updates = 4, episodes = 5 }
+[fitness]
+trials = 2
+[genome]
+max_features = 4
+max_depth = 4
+max_size = 15
+[validation]
+candidates = 3
+seeds = 6
+confirm_seeds = 6
+)");
+}
+
+std::string fingerprint(const std::string& dir) {
+  return withoutSeconds(readText(dir + "/generations.csv")) + readText(dir + "/validation.csv") +
+         readText(dir + "/confirmation.csv") + readText(dir + "/best.features");
+}
+
+TEST(TimeBudget, ARunWritesItsSizesAndAResumeReusesThem) {
+  const auto dir = freshDir("budget-run");
+  service::EvolveRequest request;
+  request.config = budgetConfig();
+  request.out = {dir, false, "--out"};
+  request.threads = 2;
+  std::atomic<bool> stop{false};
+  StopAfterFirst progress(stop);
+  ASSERT_FALSE(service::evolve(request, progress, stop).finished);  // Stopped after generation 0.
+
+  // The sizes chosen are in config.toml, with no budget left to measure again; run.json says what
+  // was measured and chosen; the text said it.
+  const auto written = run::loadExperimentConfig(dir + "/config.toml");
+  EXPECT_EQ(written.timeBudget, 0.0);
+  EXPECT_EQ(readText(dir + "/config.toml").find("time_budget"), std::string::npos);
+  const auto runJson = nlohmann::json::parse(readText(dir + "/run.json"));
+  const auto& chosen = runJson.at("time_budget").at("chosen");
+  EXPECT_EQ(runJson.at("time_budget").at("seconds").get<double>(), 4.0);
+  EXPECT_EQ(chosen.at("population").get<int>(), written.gp.population);
+  EXPECT_GE(chosen.at("generations").get<int>(), 2);
+  EXPECT_GE(written.gp.generations, 1);  // Fitted to the budget after generation 0.
+  EXPECT_EQ(chosen.at("seeds").get<int>(), written.validation.seeds);
+  EXPECT_GE(written.gp.population, run::kMinPopulation);
+  EXPECT_GE(written.gp.generations, 2);
+  EXPECT_NE(progress.said.find(fmt::format("population {}, generations {}", written.gp.population,
+                                           chosen.at("generations").get<int>())),
+            std::string::npos)
+      << progress.said;
+
+  // The resume continues with the written sizes (also when checked against the budget config)
+  // and gives what the resolved config gives when run again from scratch.
+  service::EvolveRequest resume;
+  resume.resume = dir;
+  resume.config = request.config;  // Its time_budget stands for the written sizes.
+  service::EvolveProgress quiet;
+  const std::atomic<bool> go{false};
+  ASSERT_TRUE(service::evolve(resume, quiet, go).finished);
+  EXPECT_EQ(readText(dir + "/config.toml").find("time_budget"), std::string::npos);
+  const auto again = freshDir("budget-again");
+  service::EvolveRequest rerun;
+  rerun.config = dir + "/config.toml";
+  rerun.out = {again, false, "--out"};
+  rerun.threads = 1;
+  ASSERT_TRUE(service::evolve(rerun, quiet, go).finished);
+  EXPECT_EQ(fingerprint(again), fingerprint(dir));
+  EXPECT_FALSE(nlohmann::json::parse(readText(again + "/run.json")).contains("time_budget"));
+}
+
+TEST(TimeBudget, ABudgetTooShortForTheSmallestRunIsRefused) {
+  service::EvolveRequest request;
+  request.config = "cartpole-quick";
+  request.overrides = {"time_budget=0.05"};
+  request.out = {freshDir("budget-short"), false, "--out"};
+  service::EvolveProgress quiet;
+  const std::atomic<bool> stop{false};
+  try {
+    service::evolve(request, quiet, stop);
+    FAIL() << "a 0.05 s budget was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "time_budget (--time-budget)");
+    EXPECT_NE(std::string(e.what()).find("is too short here: the smallest run"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(TimeBudget, TheKeyReadsSecondsOrTextAndBadValuesNameIt) {
+  const auto path = tinyEvolveConfig("budget-key", 1);  // Without a budget.
+  EXPECT_EQ(service::loadConfig(path, {"time_budget=\"1h30m\""}).timeBudget, 5400.0);
+  EXPECT_EQ(service::loadConfig(path, {"time_budget=90"}).timeBudget, 90.0);
+  EXPECT_EQ(service::loadConfig(path, {}).timeBudget, 0.0);
+  const auto withBudget = service::loadConfig(path, {"time_budget=\"10m\""});
+  EXPECT_NE(run::formatExperimentConfig(withBudget).find("time_budget = 600"), std::string::npos);
+  for (const char* bad : {"time_budget=\"ten minutes\"", "time_budget=0", "time_budget=-3"}) {
+    try {
+      service::loadConfig(path, {bad});
+      ADD_FAILURE() << bad;
+    } catch (const InputError& e) {
+      EXPECT_NE(e.where().find("time_budget"), std::string::npos) << bad << ": " << e.where();
+    }
+  }
+}
+
+TEST(TimeBudget, TheFlagsBadValuesAreErrorsNamingIt) {
+  const auto bad = runGpfd("evolve --time-budget 10x --quiet --out " + freshDir("budget-flag"));
+  EXPECT_EQ(bad.status, 2) << bad.output;
+  EXPECT_NE(bad.output.find("not '10x' (--time-budget)"), std::string::npos) << bad.output;
+  const auto both =
+      runGpfd("evolve --time-budget 1m --population 20 --quiet --out " + freshDir("budget-both"));
+  EXPECT_EQ(both.status, 2) << both.output;
+  EXPECT_NE(both.output.find("give either it or them (--time-budget)"), std::string::npos)
+      << both.output;
+}
+
+}  // namespace
+}  // namespace gpfd::testing
