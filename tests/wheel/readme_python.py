@@ -39,7 +39,8 @@ def main() -> None:
     assert shown.strip(), "run.best.show() is empty"
     # table = gpfd.assess(run.best, config="cartpole-quick")
     table = gpfd.assess(run.best, config="cartpole-quick", runs=2, budget=5, threads=2)
-    assert len(table["mean_final"]) == 2, table  # the original variables, then run.best
+    # The original variables, run.best, then the no-learning reference.
+    assert list(table["set"]) == ["original", "best", "no-learning"], table
     assert all(np.isfinite(v) for v in table["mean_final"]), table
     # env = gpfd.wrappers.FeatureObservation(gym.make("CartPole-v1"), run.best)
     env = gpfd.wrappers.FeatureObservation(gym.make("CartPole-v1"), run.best)
