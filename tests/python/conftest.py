@@ -45,3 +45,17 @@ def gpfd_env(env: gym.Env) -> GpfdEnv:
     base = env.unwrapped
     assert isinstance(base, GpfdEnv), base
     return base
+
+
+@pytest.fixture(scope="session")
+def dask_client():
+    """A Dask client of a local cluster of two worker processes, one thread each (skipped where
+    distributed is not installed: the test extra installs it)."""
+    distributed = pytest.importorskip("distributed")
+    cluster = distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    )
+    client = distributed.Client(cluster)
+    yield client
+    client.close()
+    cluster.close()
