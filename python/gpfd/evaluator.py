@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable, Iterator
-from concurrent.futures import BrokenExecutor, Executor
+from concurrent.futures import BrokenExecutor, CancelledError, Executor
 from typing import Any
 
 import gymnasium as gym
@@ -141,10 +141,17 @@ class Evaluator:
         except BrokenExecutor as e:
             raise WorkerError(
                 f"the executor broke ({type(e).__name__}: {e}): one of its workers died and "
-                f"{type(self._executor).__name__} cannot go on without it. The run stops; its "
-                "directory keeps the last complete generation, which resume= continues (with a "
-                "new executor). gpfd's own pool (threads=N) and Dask run a lost worker's tasks "
-                "elsewhere instead."
+                f"{type(self._executor).__name__} cannot go on without it. The work stops; a "
+                "discovery's directory keeps its last complete generation, which resume= "
+                "continues (with a new executor). gpfd's own pool (threads=N) and Dask run a "
+                "lost worker's tasks elsewhere instead."
+            ) from e
+        except CancelledError as e:  # Not by gpfd: it cancels only once it stops waiting.
+            raise WorkerError(
+                f"the executor ({type(self._executor).__name__}) cancelled a task: a Dask "
+                "client's tasks are cancelled when its scheduler goes away or it closes. The "
+                "work stops; a discovery's directory keeps its last complete generation, which "
+                "resume= continues (with a working executor)."
             ) from e
         self._busy = False
 

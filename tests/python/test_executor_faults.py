@@ -1,8 +1,11 @@
 """A worker lost mid-generation (gpfd.evolve(executor=...)): on gpfd's own pool and on Dask its
 task runs again elsewhere and the run ends as on threads=1; ProcessPoolExecutor breaks as a whole,
-and gpfd stops with a clear error and a directory that resume= continues to the same run."""
+and gpfd stops with a clear error and a directory that resume= continues to the same run, as it
+does when a Dask scheduler goes away."""
 
 import os
+import subprocess
+import sys
 from pathlib import Path
 from typing import Any
 
@@ -95,4 +98,59 @@ def test_a_broken_process_pool_stops_the_run_and_resume_continues_it(tmp_path, r
             executor=executor,
             verbose=False,
         )
+    assert run.finished and run_files(run.dir) == reference
+
+
+def test_a_dask_scheduler_that_goes_away_stops_the_run_and_resume_continues_it(
+    tmp_path, reference, dask_client
+):
+    """A scheduler and two workers of their own (dask's command line), the scheduler killed
+    after generation 0; the run resumed on another cluster."""
+    distributed = pytest.importorskip("distributed")
+    dask = [sys.executable, "-m", "distributed.cli.dask_scheduler"]
+    address = str(tmp_path / "scheduler.json")
+    path = os.pathsep.join(sys.path)  # The workers import this module (DiesOnce) as this does.
+    quiet: dict[str, Any] = {"stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL}
+    quiet["env"] = {**os.environ, "PYTHONPATH": path}
+    scheduler = subprocess.Popen(
+        [*dask, "--port", "0", "--no-dashboard", "--scheduler-file", address], **quiet
+    )
+    worker = [sys.executable, "-m", "distributed.cli.dask_worker", "--nthreads", "1"]
+    workers = [
+        subprocess.Popen([*worker, "--no-dashboard", "--scheduler-file", address], **quiet)
+        for _ in range(2)
+    ]
+    try:
+        client = distributed.Client(scheduler_file=address, timeout=60)
+        client.wait_for_workers(2, timeout=60)
+        flags = tmp_path / "lost-flags"
+        flags.mkdir()
+        (flags / "died").touch()  # No worker dies here: the scheduler goes.
+
+        def kill_scheduler(stats: dict) -> None:
+            if stats["generation"] == 0:
+                scheduler.kill()
+
+        with pytest.raises(WorkerError, match="cancelled a task.*scheduler goes away"):
+            gpfd.evolve(
+                env=DiesOnce,
+                env_kwargs={"directory": str(flags), "parent": os.getpid()},
+                **COMMON,
+                executor=client.get_executor(),
+                callback=kill_scheduler,
+                out=tmp_path / "lost",
+                verbose=False,
+            )
+        client.close(timeout=5)
+    finally:
+        for process in (scheduler, *workers):
+            process.kill()
+            process.wait()
+    run = gpfd.evolve(
+        resume=tmp_path / "lost",
+        env=DiesOnce,
+        env_kwargs={"directory": str(flags), "parent": os.getpid()},
+        executor=dask_client.get_executor(),
+        verbose=False,
+    )
     assert run.finished and run_files(run.dir) == reference

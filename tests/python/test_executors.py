@@ -14,6 +14,7 @@ import pytest
 import gpfd
 from gpfd.workers import WorkerPool
 from point_env import Point
+from test_lockstep_group import SMALL_VALIDATION, TINY
 from test_user_env_workers import SMALL, run_files
 
 COMMON: dict[str, Any] = {"seed": 4, "population": 6, "generations": 2, "set": SMALL}
@@ -113,6 +114,20 @@ def test_dask_gives_threads_one(tmp_path, reference, dask_client):
     assert run_files(run.dir) == reference
     assert run.info["threads"] == 2
     assert got and set(got.values()) == {1}
+
+
+def test_a_vector_form_in_lockstep_groups_on_dask_gives_threads_one(tmp_path, dask_client):
+    common: dict[str, Any] = {
+        "env": "CartPole-v1",
+        "seed": 2,
+        "population": 20,  # Two lockstep groups of 10 evaluations.
+        "generations": 1,
+        "set": TINY | SMALL_VALIDATION,
+        "verbose": False,
+    }
+    one = gpfd.evolve(**common, threads=1, out=tmp_path / "one")
+    dask = gpfd.evolve(**common, executor=dask_client.get_executor(), out=tmp_path / "dask")
+    assert run_files(one.dir) == run_files(dask.dir)
 
 
 def test_assess_on_an_executor_gives_the_same_table():
