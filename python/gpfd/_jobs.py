@@ -139,8 +139,8 @@ class Jobs:
         copies: int,
     ) -> Iterator[Any]:
         """``function(config_text, *args)`` for each args of `work` on `executor`, results in
-        order as each is done. A task's error is raised at its turn; the tasks not yet done are
-        then cancelled (as they are when the iterator is dropped: Evaluator.close)."""
+        order as each is done. A task's error is raised as soon as it comes; the tasks not yet
+        started are then cancelled (as they are when the iterator is dropped: Evaluator.close)."""
         key, payload = self.job(config_text)
         first = key not in self._sent
         self._sent.add(key)

@@ -11,9 +11,9 @@ A worker that dies is replaced by a fresh one (set up again), which runs the tas
 again: a lost worker loses no task. A task that has lost ``attempts`` workers (3: it may be what
 kills them) fails with WorkerError, naming the last worker and how it ended. A worker that cannot
 start or set up breaks the pool: every task not yet done fails with WorkerError, and so does
-every later submit. Workers run in a session of
-their own and ignore SIGINT: Ctrl-C reaches only this process, which ends them (``terminate``).
-gpfd.evaluator runs the discovery's work on such an executor.
+every later submit. Workers run in a session of their own and ignore SIGINT: Ctrl-C reaches only
+this process, which ends them (``terminate``). gpfd.evaluator runs the discovery's work on such
+an executor.
 """
 
 from __future__ import annotations

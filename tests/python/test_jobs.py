@@ -122,7 +122,7 @@ def test_a_round_sends_the_job_again_to_whoever_lacks_it_and_keeps_the_order():
     assert jobs.payloads_sent == 6 and not jobs.pending
 
 
-def test_a_task_error_is_raised_at_its_turn_and_the_rest_cancelled():
+def test_a_task_error_is_raised_and_the_rest_cancelled():
     jobs = _jobs.Jobs("python:jobs-h", Factory("h"))
 
     def fails(config_text: str, value: int) -> int:
