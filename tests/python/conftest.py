@@ -1,8 +1,11 @@
 """Shared fixtures of the Python tests: the repository, the gpfd command line, small configs."""
 
+import importlib.machinery
+import importlib.util
 import os
 import shutil
 from pathlib import Path
+from types import ModuleType
 
 import gymnasium as gym
 import pytest
@@ -16,6 +19,18 @@ QUICK = {
     "learner.params.updates": 5,
     "fitness.trials": 2,
 }
+
+
+def script_module(name: str) -> ModuleType:
+    """scripts/NAME (a Python script without the .py) loaded as a module."""
+    loader = importlib.machinery.SourceFileLoader(
+        name.replace("-", "_"), str(REPO / "scripts" / name)
+    )
+    spec = importlib.util.spec_from_loader(loader.name, loader)
+    assert spec is not None
+    module = importlib.util.module_from_spec(spec)
+    loader.exec_module(module)
+    return module
 
 
 @pytest.fixture(scope="session")

@@ -7,8 +7,6 @@ unless this process may make network namespaces (root, iproute2) and Dask is ins
 Marked multihost: left out of the default run (pyproject.toml's addopts), as ctest's multihost
 tests are; run with ``pytest -m multihost`` (.ci/run does, after ``ctest -L multihost``)."""
 
-import importlib.machinery
-import importlib.util
 import os
 import subprocess
 import sys
@@ -17,12 +15,12 @@ from pathlib import Path
 
 import pytest
 
+from conftest import script_module
 from test_executor_faults import evolve
 from test_user_env_workers import run_files
 
 pytestmark = pytest.mark.multihost
 HERE = Path(__file__).resolve().parent
-MULTIHOST = HERE.parents[1] / "scripts" / "multihost"
 SUBNET = "10.78.0"
 
 DRIVER = f"""
@@ -44,19 +42,9 @@ client.close()
 """
 
 
-def network_module():
-    """scripts/multihost as a module: its Network of namespaced hosts."""
-    loader = importlib.machinery.SourceFileLoader("multihost", str(MULTIHOST))
-    spec = importlib.util.spec_from_loader("multihost", loader)
-    assert spec is not None
-    module = importlib.util.module_from_spec(spec)
-    loader.exec_module(module)
-    return module
-
-
 def test_dask_across_namespaced_hosts_gives_threads_one_with_a_worker_killed(tmp_path):
     pytest.importorskip("distributed")
-    multihost = network_module()
+    multihost = script_module("multihost")  # Its Network of namespaced hosts.
     why = multihost.usable()
     if why:
         pytest.skip(f"multihost: {why}")
