@@ -16,6 +16,7 @@ import signal
 import sys
 import threading
 from collections.abc import Callable, Iterable, Mapping, Sequence
+from concurrent.futures import Executor, ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -23,7 +24,7 @@ from typing import Any
 import numpy as np
 
 from gpfd import _core, progress, user_env
-from gpfd._core import FeatureSet
+from gpfd._core import FeatureSet, InputError
 from gpfd.evaluator import Evaluator
 
 if sys.version_info >= (3, 11):
@@ -99,6 +100,35 @@ def _env_overrides(env: Any, env_kwargs: dict | None) -> tuple[list[str], Evalua
     name, factory = user_env.resolve(env, env_kwargs)
     user_env.register(name, factory)
     return [f"env.name={_toml_value(name)}", "env.params={}"], Evaluator(name, factory, 1)
+
+
+def _use_workers(evaluator: Evaluator | None, threads: int, executor: Any, env: Any) -> None:
+    """Where the evaluator's work runs (Evaluator.use); InputError naming ``executor`` when it is
+    not a concurrent.futures.Executor, or when there is no environment stepped in Python."""
+    if executor is not None:
+        if not isinstance(executor, Executor):
+            raise InputError(
+                "executor must be a concurrent.futures.Executor (ProcessPoolExecutor, loky, a "
+                "Dask client's get_executor(), mpi4py's MPIPoolExecutor, gpfd.workers."
+                f"WorkerPool), not {type(executor).__name__}"
+            )
+        context: Any = getattr(executor, "_mp_context", None)
+        forks = context is not None and context.get_start_method() == "fork"
+        if isinstance(executor, ProcessPoolExecutor) and forks:
+            raise InputError(
+                "executor: a ProcessPoolExecutor whose workers fork this process, which runs "
+                "gpfd's threads: a forked copy may hold their locks and die. Make it with "
+                "mp_context=multiprocessing.get_context('forkserver') (or 'spawn')"
+            )
+        if evaluator is None:
+            which = f"{env} is gpfd's own environment" if env else "without env=, the config's"
+            raise InputError(
+                f"executor= runs an environment stepped in Python on the executor's workers; "
+                f"{which}, stepped in C++: leave executor= out (threads= runs it on threads of "
+                "this process; gpfd evolve under MPI across hosts, docs/mpi.md)"
+            )
+    if evaluator is not None:
+        evaluator.use(threads, executor)
 
 
 def _resumed_env(resume: str | os.PathLike, env: Any, env_kwargs: dict | None) -> Evaluator | None:
@@ -195,6 +225,7 @@ def evolve(
     verbose: bool | None = None,
     force: bool = False,
     time_budget: float | str | None = None,
+    executor: Executor | None = None,
 ) -> Run:
     """Discovers features with GP, exactly as ``gpfd evolve`` does, and returns the run.
 
@@ -209,6 +240,11 @@ def evolve(
         the Run returned is their directory's.
     threads: worker threads (processes for a Python environment); 0: all cores. Never changes
         the results.
+    executor: a ``concurrent.futures.Executor`` (a Dask client's ``get_executor()``, mpi4py's
+        ``MPIPoolExecutor``, loky, ``ProcessPoolExecutor``) whose workers step an environment
+        stepped in Python instead of gpfd's own worker processes; ``threads`` then only says how
+        many workers to size the work for (0: the executor's own count). Never shut down by
+        gpfd; never changes the results.
     out: the results directory (default ``results/<name>``, or ``results/<name>-N`` when taken:
         the config's name, or for an environment stepped in Python the environment's);
         one that already holds files needs ``force=True``, one that holds a run is resumed with
@@ -256,8 +292,7 @@ def evolve(
         overrides += _overrides(set)
         if time_budget is not None:
             overrides += _overrides({"time_budget": time_budget})
-    if evaluator is not None:
-        evaluator.workers = threads if threads > 0 else (os.cpu_count() or 1)
+    _use_workers(evaluator, threads, executor, env)
 
     bar = progress.EvolveBar() if progress.shows_bar(verbose) else None
 
@@ -410,6 +445,7 @@ def assess(
     force: bool = False,
     as_frame: bool | None = None,
     env_kwargs: dict[str, Any] | None = None,
+    executor: Executor | None = None,
 ) -> Any:
     """The paper's test protocol, as ``gpfd assess`` runs it: each feature set (and the original
     state variables, the baseline, first) trained with the long budget over ``runs`` runs, with
@@ -421,6 +457,7 @@ def assess(
     env: one of gpfd's environments, or a Gymnasium id or a callable returning a Gymnasium
         environment (``env_kwargs`` go to it), whose runs step it in Python in ``threads`` worker
         processes, as gpfd.evolve does; its default config is ``user-env``.
+    executor: runs those runs on this executor's workers, as gpfd.evolve's ``executor``.
     params: ``k=v`` for the environment or the learner, like ``--param``.
     """
     if isinstance(features, (FeatureSet, str, os.PathLike)):
@@ -429,8 +466,8 @@ def assess(
     # gpfd's own environment by name; one stepped in Python by the name it is registered under.
     env_name = evaluator.name if evaluator is not None else env if isinstance(env, str) else ""
     threads = _whole("threads", threads, 0)
+    _use_workers(evaluator, threads, executor, env)
     if evaluator is not None:
-        evaluator.workers = threads if threads > 0 else (os.cpu_count() or 1)
         if config is None:
             config = user_env.DEFAULT_CONFIG
     else:

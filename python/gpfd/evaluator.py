@@ -3,47 +3,35 @@ executor: GP's fitness evaluations (``Evaluator.__call__``, python/src/discovery
 and the learning runs of validation, confirmation and assessment (``Evaluator.run_trials``,
 python/src/trial_runner.cpp).
 
-With one worker the work runs in this process; with more, on an executor of that many workers
-(``make_executor``; gpfd.workers.WorkerPool by default, whose workers are fresh interpreters).
-Each worker gets the environment's factory once (``_init_worker``); a task carries only the config
-text, the packed genomes or feature sets and the seeds. A fitness depends on its genome and seed
+With one worker and no executor the work runs in this process. Otherwise it runs on an executor:
+the user's (``executor=``: any ``concurrent.futures.Executor``, never shut down here), or one
+of ``workers`` workers made at the first work and ended by ``close`` (``make_executor``;
+gpfd.workers.WorkerPool by default, whose workers are fresh interpreters). Both go through
+gpfd._jobs: each worker gets the environment's factory and the config text once; a task carries
+only the packed genomes or feature sets and the seeds. A fitness depends on its genome and seed
 only, a curve on its features, budget and seed (and, on a vector form seeded as a whole, the
-lockstep group, whose make-up never depends on the workers), so any number of workers gives the
-same run.
+lockstep group, whose make-up never depends on the workers), so any executor and any number of
+workers give the same run.
 """
 
 from __future__ import annotations
 
 import os
 from collections.abc import Callable, Iterator
-from concurrent.futures import Executor
+from concurrent.futures import BrokenExecutor, CancelledError, Executor
 from typing import Any
 
-import cloudpickle
 import gymnasium as gym
 
-from gpfd import _core, user_env, vector_cache, vector_source
-from gpfd.workers import WorkerPool
+from gpfd import _jobs, vector_cache, vector_source
+from gpfd.workers import WorkerError, WorkerPool
 
 # Fitness evaluations played together in one vector environment (a lockstep group) where the
 # environment has a vector form: 30 lanes each for cartpole-quick's 3 trials of 10 episodes.
 LOCKSTEP_GROUP = 16
 
-#: make_executor(workers, initializer, initargs): the executor an Evaluator runs on.
-ExecutorFactory = Callable[[int, Callable[..., Any], tuple], Executor]
-
-
-def _init_worker(name: str, factory: Callable[[], gym.Env]) -> None:
-    """A worker's setup: the environment `name` made by `factory` there."""
-    user_env.register(name, factory)
-
-
-def _fitness_group_task(task: tuple[str, list[tuple[bytes, int]]]) -> list[float]:
-    return _core.trial_fitness_group(*task)
-
-
-def _runs_group_task(task: tuple[str, int, list[tuple[tuple, list[int]]]]) -> list[list]:
-    return _core.train_runs_group(*task)
+#: make_executor(workers): the executor an Evaluator makes, and ends, where it is given none.
+ExecutorFactory = Callable[[int], Executor]
 
 
 def _lockstep_groups(tasks: list) -> list[list]:
@@ -63,11 +51,28 @@ def _lockstep_groups(tasks: list) -> list[list]:
     return groups
 
 
+def executor_workers(executor: Executor) -> int | None:
+    """How many workers `executor` has, where it says: gpfd's pool, ProcessPoolExecutor and loky
+    (``_max_workers``), a Dask client's executor (the threads of its workers); else None."""
+    for attribute in ("workers", "_max_workers"):
+        count = getattr(executor, attribute, None)
+        if isinstance(count, int) and count > 0:
+            return count
+    client = getattr(executor, "_client", None)  # distributed.client.ClientExecutor
+    nthreads = getattr(client, "nthreads", None)
+    if callable(nthreads):
+        try:
+            return sum(nthreads().values()) or None
+        except Exception:  # A client that cannot answer now: the caller's default.
+            return None
+    return None
+
+
 class Evaluator:
     """evaluate(config_text, [(genome, seed), ...]) for gpfd's discovery: run::trialFitness of
     each genome; and run_trials for the learning runs of validation, confirmation and assessment.
-    In this process (workers == 1) or on an executor of `workers` workers, started at the first
-    work and ended by close()."""
+    In this process (one worker, no executor) or on an executor: the one given (``use``), or one
+    of `workers` workers made by `make_executor` at the first work and ended by close()."""
 
     def __init__(
         self,
@@ -81,11 +86,22 @@ class Evaluator:
         self.workers = workers if workers > 0 else (os.cpu_count() or 1)
         self.make_executor = make_executor
         self._executor: Executor | None = None
+        self._given = False  # The executor is the caller's: never shut down here.
+        self._jobs: _jobs.Jobs | None = None
         self._busy = False  # A round of work is under way (or was left unfinished).
 
+    def use(self, threads: int, executor: Executor | None = None) -> None:
+        """Runs on `executor` (the caller's; `threads` > 0 says how many workers to size the work
+        for, else the executor's own count or the cores), or without one on `threads` workers
+        (0: one per core). The number is run.json's `threads`; it never changes the results."""
+        self._executor, self._given = executor, executor is not None
+        count = executor_workers(executor) if executor is not None and threads == 0 else None
+        self.workers = threads or count or os.cpu_count() or 1
+
     def __call__(self, config_text: str, tasks: list[tuple[bytes, int]]) -> list[float]:
-        groups = [(config_text, group) for group in self._groups(tasks)]
-        return [fitness for done in self._map(_fitness_group_task, groups) for fitness in done]
+        groups = [(group,) for group in self._groups(tasks)]
+        done = self._map(_jobs.fitness_group, config_text, groups)
+        return [fitness for group in done for fitness in group]
 
     @property
     def lockstep(self) -> bool:
@@ -104,43 +120,60 @@ class Evaluator:
         """The curves of each task (a feature set and the seeds of its runs) under the config
         and budget (run::LearningTask::Budget), in task order, as each is done
         (python/src/trial_runner.cpp)."""
-        groups = [(config_text, budget, group) for group in self._groups(tasks)]
-        return (curves for done in self._map(_runs_group_task, groups) for curves in done)
+        groups = [(budget, group) for group in self._groups(tasks)]
+        return (
+            curves for done in self._map(_jobs.runs_group, config_text, groups) for curves in done
+        )
 
-    def _map(self, function: Callable[[Any], Any], work: list) -> Iterator:
-        """function over work, in order, as each is done: here, or on the executor."""
-        if self.workers == 1:
-            return map(function, work)
-        return self._round(self._started().map(function, work))
+    def _map(self, function: Callable[..., Any], config_text: str, work: list[tuple]) -> Iterator:
+        """function(config_text, *args) for each args of work, in order, as each is done: here,
+        or on the executor under the jobs of gpfd._jobs."""
+        if self._executor is None and self.workers == 1:
+            return (function(config_text, *args) for args in work)
+        executor = self._started()
+        assert self._jobs is not None
+        return self._round(self._jobs.map(executor, function, config_text, work, self.workers))
 
     def _round(self, results: Iterator) -> Iterator:
         self._busy = True
-        yield from results
+        try:
+            yield from results
+        except BrokenExecutor as e:
+            raise WorkerError(
+                f"the executor broke ({type(e).__name__}: {e}): one of its workers died and "
+                f"{type(self._executor).__name__} cannot go on without it. The work stops; a "
+                "discovery's directory keeps its last complete generation, which resume= "
+                "continues (with a new executor). gpfd's own pool (threads=N) and Dask run a "
+                "lost worker's tasks elsewhere instead."
+            ) from e
+        except CancelledError as e:  # Not by gpfd: it cancels only once it stops waiting.
+            raise WorkerError(
+                f"the executor ({type(self._executor).__name__}) cancelled a task: a Dask "
+                "client's tasks are cancelled when its scheduler goes away or it closes. The "
+                "work stops; a discovery's directory keeps its last complete generation, which "
+                "resume= continues (with a working executor)."
+            ) from e
         self._busy = False
 
     def _started(self) -> Executor:
+        if self._jobs is None:
+            self._jobs = _jobs.Jobs(self.name, self.factory)  # TypeError where it cannot travel.
         if self._executor is None:
-            try:
-                cloudpickle.dumps(self.factory)
-            except Exception as e:
-                raise TypeError(
-                    f"{self.name}: the environment's factory cannot be sent to the worker "
-                    f"processes: cloudpickle cannot pickle it ({type(e).__name__}: {e}); make it "
-                    "picklable, or use threads=1 to run in this process"
-                ) from e
-            self._executor = self.make_executor(
-                self.workers, _init_worker, (self.name, self.factory)
-            )
+            self._executor = self.make_executor(self.workers)
         return self._executor
 
     def close(self) -> None:
-        """Ends the executor: at once when a round was left unfinished (an interruption, an
-        error), its workers terminated; else once they are idle. This process' idle vector
-        environments of the name are closed (gpfd.vector_cache; each worker closes its own at
-        exit)."""
+        """Ends the round under way, its tasks not yet started cancelled, and the executor made
+        here: at once when a round was left unfinished (an interruption, an error), its workers
+        terminated; else once they are idle. An executor given to ``use`` goes on. This
+        process' idle vector environments of the name are closed (gpfd.vector_cache; each worker
+        closes its own at exit)."""
         vector_cache.close(self.name)
+        if self._jobs is not None:
+            self._jobs.cancel()
         executor, self._executor = self._executor, None
-        if executor is None:
+        if executor is None or self._given:
+            self._busy = False
             return
         terminate = getattr(executor, "terminate", None)
         if self._busy and terminate is not None:

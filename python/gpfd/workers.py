@@ -3,13 +3,17 @@ interpreters running gpfd._worker, never the user's ``__main__``.
 
 A script without ``if __name__ == "__main__":``, code piped to ``python -`` and a notebook all work
 alike: what a worker runs (the environment's factory, the task functions) travels to it pickled by
-cloudpickle, which pickles ``__main__``'s classes and functions by value. Each worker gets the
-initializer once (the environment's factory, kept there), then one task at a time.
+cloudpickle, which pickles ``__main__``'s classes and functions by value. Each worker runs the
+initializer once, then one task at a time (gpfd.evaluator sends the environment's factory once
+per worker with its tasks instead: gpfd._jobs).
 
-A worker that dies is never replaced: its task and every task not yet done fail with WorkerError,
-naming the worker and how it ended, and so does every later submit. Workers run in a session of
-their own and ignore SIGINT: Ctrl-C reaches only this process, which ends them (``terminate``).
-gpfd.evaluator runs the discovery's work on such an executor.
+A worker that dies is replaced by a fresh one (set up again), which runs the task it was running
+again: a lost worker loses no task. A task that has lost ``attempts`` workers (3: it may be what
+kills them) fails with WorkerError, naming the last worker and how it ended. A worker that cannot
+start or set up breaks the pool: every task not yet done fails with WorkerError, and so does
+every later submit. Workers run in a session of their own and ignore SIGINT: Ctrl-C reaches only
+this process, which ends them (``terminate``). gpfd.evaluator runs the discovery's work on such
+an executor.
 """
 
 from __future__ import annotations
@@ -107,8 +111,7 @@ class _Worker:
             return _frames.receive(self.results)
         except (OSError, EOFError):
             raise WorkerError(
-                f"{self.name()} {_how_it_ended(self.process)} while running a task; gpfd does not "
-                "restart workers, so the run stops here"
+                f"{self.name()} {_how_it_ended(self.process)} while running a task"
             ) from None
 
     def close(self) -> None:
@@ -122,16 +125,22 @@ class _Worker:
 class WorkerPool(Executor):
     """``workers`` worker processes; ``initializer(*initargs)`` runs once in each before its
     first task. ``submit(fn, *args)`` runs ``fn(*args)`` on the first free worker; ``fn``, the
-    arguments and the result travel pickled (cloudpickle). ``map`` gives results in order."""
+    arguments and the result travel pickled (cloudpickle). ``map`` gives results in order. A task
+    runs on at most ``attempts`` workers: one more each time its worker dies under it."""
 
     def __init__(
         self,
         workers: int,
         initializer: Callable[..., Any] | None = None,
         initargs: tuple = (),
+        attempts: int = 3,
     ) -> None:
         if workers < 1:
             raise ValueError(f"a pool needs at least one worker, got {workers}")
+        if attempts < 1:
+            raise ValueError(f"a task needs at least one attempt, got {attempts}")
+        self._attempts = attempts
+        self._started = 0  # Workers started, replacements included: the next one's number.
         self._setup = cloudpickle.dumps((initializer or _no_setup, tuple(initargs)))
         self._queue: queue.SimpleQueue = queue.SimpleQueue()
         self._lock = threading.Lock()
@@ -142,8 +151,7 @@ class WorkerPool(Executor):
         self._threads: list[threading.Thread] = []
         try:
             for number in range(workers):
-                worker = _Worker(number)
-                self._workers.append(worker)
+                worker = self._start_worker()
                 thread = threading.Thread(
                     target=self._serve, args=(worker,), name=f"gpfd-worker-{number}", daemon=True
                 )
@@ -155,7 +163,16 @@ class WorkerPool(Executor):
 
     @property
     def workers(self) -> int:
-        return len(self._workers)
+        """How many workers serve the pool at once."""
+        return len(self._threads)
+
+    def _start_worker(self) -> _Worker:
+        with self._lock:
+            number, self._started = self._started, self._started + 1
+        worker = _Worker(number)
+        with self._lock:
+            self._workers.append(worker)
+        return worker
 
     def submit(self, fn: Callable[..., Any], /, *args: Any, **kwargs: Any) -> Future:
         if kwargs:
@@ -169,20 +186,26 @@ class WorkerPool(Executor):
             self._queue.put((future, cloudpickle.dumps((fn, args))))
         return future
 
-    def _serve(self, worker: _Worker) -> None:
-        """A thread per worker: the setup, then the queue's tasks one at a time until a None."""
+    def _set_up(self, worker: _Worker) -> bool:
+        """Sends the worker sys.path and the setup; False, the pool broken, where that fails."""
         with contextlib.suppress(OSError):  # A worker gone: the call below says how it ended.
             _frames.send_bytes(worker.tasks, pickle.dumps(list(sys.path)))
         try:
             reply = worker.call(self._setup)
         except WorkerError as e:
             self._break(e)
-            return
+            return False
         if reply[0] != "ok":
             error = _error_of(reply)
             self._break(
                 WorkerError(f"{worker.name()} could not set up: {type(error).__name__}: {error}")
             )
+            return False
+        return True
+
+    def _serve(self, worker: _Worker) -> None:
+        """A thread per worker: the setup, then the queue's tasks one at a time until a None."""
+        if not self._set_up(worker):
             return
         while True:
             item = self._queue.get()
@@ -194,17 +217,48 @@ class WorkerPool(Executor):
                 continue
             if not future.set_running_or_notify_cancel():
                 continue
+            replacement = self._run(worker, future, payload)
+            if replacement is None:
+                return
+            worker = replacement
+
+    def _run(self, worker: _Worker, future: Future, payload: bytes) -> _Worker | None:
+        """Runs one task, on a fresh worker again each time its worker dies under it, up to the
+        attempts; the worker to go on with, None when the pool is terminated or broken."""
+        for attempt in range(1, self._attempts + 1):
             try:
                 reply = worker.call(payload)
             except WorkerError as died:
-                error = WorkerError("the worker pool was terminated") if self._terminating else died
-                future.set_exception(error)
-                self._break(error)
-                return
+                if self._terminating:
+                    future.set_exception(WorkerError("the worker pool was terminated"))
+                    return None
+                if attempt == self._attempts:
+                    future.set_exception(
+                        WorkerError(f"{died}; the task has lost {attempt} workers")
+                    )
+                replacement = self._replace(worker)
+                if replacement is None:
+                    if attempt < self._attempts:
+                        future.set_exception(self._broken or died)
+                    return None
+                worker = replacement
+                continue
             if reply[0] == "ok":
                 future.set_result(reply[1])
             else:
                 future.set_exception(_error_of(reply))
+            return worker
+        return worker
+
+    def _replace(self, lost: _Worker) -> _Worker | None:
+        """A fresh worker, set up, for one that died; None (the pool broken) when it fails."""
+        lost.close()
+        try:
+            worker = self._start_worker()
+        except BaseException as e:
+            self._break(WorkerError(f"a worker to replace {lost.name()} did not start: {e}"))
+            return None
+        return worker if self._set_up(worker) else None
 
     def _break(self, error: BaseException) -> None:
         """Fails every queued task with `error`, and every later submit."""

@@ -1,22 +1,16 @@
 """scripts/compare-outputs, the check that a restructuring changes no output: it ignores timings
 and revisions, and names every file whose content differs or that only one binary wrote."""
 
-import importlib.machinery
-import importlib.util
 from pathlib import Path
 
 import pytest
 
+from conftest import script_module
+
 
 @pytest.fixture(scope="module")
-def compare_outputs(repo):
-    path = repo / "scripts" / "compare-outputs"
-    loader = importlib.machinery.SourceFileLoader("compare_outputs", str(path))
-    spec = importlib.util.spec_from_loader("compare_outputs", loader)
-    assert spec is not None
-    module = importlib.util.module_from_spec(spec)
-    loader.exec_module(module)
-    return module
+def compare_outputs():
+    return script_module("compare-outputs")
 
 
 def write(root: Path, files: dict[str, str]) -> Path:

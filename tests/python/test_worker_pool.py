@@ -1,6 +1,7 @@
 """gpfd's worker pool (gpfd.workers.WorkerPool): an executor whose workers are fresh interpreters
 that never run this ``__main__``; results in order; a worker's error comes back as itself; a
-worker that dies fails the pool at once, naming it, and is never restarted."""
+worker that dies is replaced and its task runs again, up to the task's attempts, after which the
+task fails naming the worker and how it ended."""
 
 import os
 import signal
@@ -54,26 +55,48 @@ def test_an_error_in_a_task_comes_back_as_itself_and_the_pool_goes_on():
         assert pool.submit(_work, 4).result()[0] == 16
 
 
-def test_a_worker_that_dies_fails_the_pool_naming_it_and_is_not_restarted():
-    pool = WorkerPool(2)
+def _die_once(flag: str, code: int) -> int:
+    """Ends its worker the first time (`flag` made), returns the pid the second."""
+    try:
+        os.close(os.open(flag, os.O_CREAT | os.O_EXCL | os.O_WRONLY))
+    except FileExistsError:
+        return os.getpid()
+    os._exit(code)
+
+
+def test_a_worker_that_dies_is_replaced_and_its_task_runs_again(tmp_path):
+    with WorkerPool(2) as pool:
+        pids = {pool.submit(_work, x).result(timeout=60)[2] for x in range(4)}
+        flag = str(tmp_path / "died")
+        again = pool.submit(_die_once, flag, 3).result(timeout=60)
+        assert os.path.exists(flag) and again not in pids | {os.getpid()}  # A fresh worker.
+        assert [r[0] for r in pool.map(_work, range(6))] == [x * x for x in range(6)]
+        assert pool.workers == 2
+    assert len(pool._workers) == 3 and all(w.process.returncode is not None for w in pool._workers)
+
+
+def test_a_task_that_kills_each_worker_fails_after_its_attempts_naming_the_last():
+    pool = WorkerPool(2, attempts=2)
     try:
         dead = pool.submit(_die, 3)
-        with pytest.raises(WorkerError, match=r"gpfd worker \d \(pid \d+\) exited with code 3"):
+        with pytest.raises(
+            WorkerError, match=r"gpfd worker \d \(pid \d+\) exited with code 3.*lost 2 workers"
+        ):
             dead.result(timeout=60)
-        with pytest.raises(WorkerError, match="broken"):
-            pool.submit(_work, 1)
+        assert pool.submit(_work, 1).result(timeout=60)[0] == 1  # The pool goes on.
     finally:
         pool.terminate()
     assert all(w.process.returncode is not None for w in pool._workers)
 
 
 def test_a_worker_killed_by_a_signal_is_named_with_it():
-    pool = WorkerPool(1)
+    pool = WorkerPool(1, attempts=1)
     try:
-        assert pool.submit(_work, 1).result(timeout=60)[0] == 1
-        os.kill(pool._workers[0].process.pid, signal.SIGKILL)
-        with pytest.raises(WorkerError, match="killed by SIGKILL"):
+        pid = pool.submit(_work, 1).result(timeout=60)[2]
+        os.kill(pid, signal.SIGKILL)
+        with pytest.raises(WorkerError, match="killed by SIGKILL.*lost 1 workers"):
             pool.submit(_work, 2).result(timeout=60)
+        assert pool.submit(_work, 3).result(timeout=60)[2] != pid  # Replaced.
     finally:
         pool.terminate()
 
@@ -117,7 +140,7 @@ class DiesInStep(Point):
         return super().step(action)
 
 
-def test_a_run_whose_worker_dies_stops_at_once_naming_it_and_keeps_nothing(tmp_path, monkeypatch):
+def test_a_run_whose_every_worker_dies_stops_naming_one_and_keeps_nothing(tmp_path, monkeypatch):
     monkeypatch.setenv("GPFD_TEST_PARENT", str(os.getpid()))  # The workers inherit it.
     with pytest.raises(WorkerError, match=r"gpfd worker \d \(pid \d+\) exited with code 7"):
         gpfd.evolve(
