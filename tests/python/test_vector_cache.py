@@ -15,12 +15,14 @@ import gpfd
 from gpfd import user_env, vector_cache, vector_source
 
 CLOSED: list[int] = []  # The ids of the vector environments closed, in this process.
+_CLOSED_KEPT: list[SyncVectorEnv] = []  # Kept alive, so that no later environment reuses an id.
 
 
 class Logged(SyncVectorEnv):
     def close(self, **kwargs):
         if not self.closed:
             CLOSED.append(id(self))
+            _CLOSED_KEPT.append(self)
         super().close(**kwargs)
 
 
