@@ -138,8 +138,10 @@ struct Discovery::State {
 
   // A time budget's end (DiscoveryOptions::deadline): the generations become those made and
   // those that still fit before the deadline, validation and confirmation left out, each as long
-  // as the longest of the last three; written into config.toml and the checkpoint when they
-  // change.
+  // as the longest of the last three, a last one counted where half of it fits (rounding, not
+  // truncating: the run ends within half a generation of the deadline on either side, where
+  // truncating ended it up to a whole one early); written into config.toml and the checkpoint
+  // when they change.
   void fitDeadline() {
     if (!options.deadline) return;
     double next = 0.0;
@@ -150,7 +152,7 @@ struct Discovery::State {
         std::chrono::duration<double>(*options.deadline - std::chrono::steady_clock::now())
             .count() -
         options.finishSeconds;
-    const double fit = next > 0.0 ? std::floor(std::max(0.0, left) / next) : 0.0;
+    const double fit = next > 0.0 ? std::round(std::max(0.0, left) / next) : 0.0;
     const int generations = evolution.generation() + 1 + static_cast<int>(std::min(fit, 1e6));
     if (generations == config.gp.generations) return;
     config.gp.generations = generations;
