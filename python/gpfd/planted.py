@@ -24,6 +24,8 @@ optimal exactly when f lies in their span. One is a control task with discrete a
   action 1 moves x by 0.1 s, action 0 by -0.1 s (x kept in [-2, 2]), reward -x**2 after the move,
   30 steps. The best policy moves x towards 0: action 1 exactly when s x < 0, so a softmax policy
   linear in s x = x0 * x1 approaches it (a policy linear in x0 and x1 cannot tell the signs apart).
+  Only the sign of s x decides, so any set on which a linear function has that sign carries it
+  (``sqrt(x1 - x0)`` does, with its threshold at 1).
 
 Every episode's randomness comes from the generator that ``reset(seed=s)`` makes
 (``gymnasium.utils.seeding.np_random(s)``, as ``gym.Env.reset`` does), drawn at the reset, so an
@@ -56,6 +58,8 @@ class Task:
     step(states (k, d), actions (k,), draws (k, m)) -> (next states (k, d), rewards (k,)).
     needed: the features a best linear policy needs, as (name, function of states (N, d) -> (N,)).
     left_out: the variables that a returned feature must not depend on.
+    by_sign: only the needed features' signs matter (the best action of a discrete task is where
+    one is below 0), so a set carries them when a linear function of it has their sign.
     """
 
     name: str
@@ -66,6 +70,7 @@ class Task:
     step: Callable[[Array, Array, Array], tuple[Array, Array]]
     needed: tuple[tuple[str, Callable[[Array], Array]], ...]
     left_out: tuple[int, ...] = ()
+    by_sign: bool = False
 
     @property
     def gym_id(self) -> str:
@@ -182,7 +187,16 @@ TASKS: dict[str, Task] = {
             (("x0 * x1", _product),),
             left_out=(2,),
         ),
-        Task("Switch", 2, 30, True, _start_switch, _step_switch, (("x0 * x1", _product),)),
+        Task(
+            "Switch",
+            2,
+            30,
+            True,
+            _start_switch,
+            _step_switch,
+            (("x0 * x1", _product),),
+            by_sign=True,
+        ),
     )
 }
 

@@ -130,6 +130,8 @@ def test_the_raw_variables_carry_nothing_needed():
         ("Energy", "cos(x0)\nx1 * x1"),  # Its parts, each alone: a linear combination carries it.
         ("Distractor", "x1 * x0"),
         ("Switch", "x0 * x1"),
+        ("Switch", "sqrt(x1 - x0)"),  # Only the sign of s x decides: this has it (threshold 1).
+        ("Switch", "x0 * x0 * x0 * x1"),
     ],
 )
 def test_check_accepts_the_planted_feature(task, text):
@@ -149,6 +151,8 @@ def test_check_accepts_the_planted_feature(task, text):
         ("Distractor", "x0 * x1\nx2"),  # Carries the product but uses the distractor.
         ("Distractor", "x0 * x2"),
         ("Switch", "x0\nx1"),
+        ("Switch", "1"),
+        ("Switch", "x1 / x0 - x1"),  # The sign of s x only where |x| < 1.
     ],
 )
 def test_check_rejects_what_misses_the_interaction(task, text):
