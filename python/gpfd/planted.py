@@ -47,6 +47,8 @@ from gymnasium.utils import seeding
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
+from gpfd._core import InputError
+
 Array = np.ndarray
 
 
@@ -202,11 +204,12 @@ TASKS: dict[str, Task] = {
 
 
 def task(name: str) -> Task:
-    """The task `name` ("Product") or its Gymnasium id; ValueError naming the tasks otherwise."""
+    """The task `name` ("Product") or its Gymnasium id; gpfd.InputError naming the tasks
+    otherwise."""
     for t in TASKS.values():
         if name in (t.name, t.gym_id):
             return t
-    raise ValueError(f"no planted task {name!r}; the tasks: {', '.join(TASKS)}")
+    raise InputError(f"no planted task {name!r}; the tasks: {', '.join(TASKS)}")
 
 
 def _spaces(t: Task) -> tuple[spaces.Box, spaces.Space]:
@@ -287,7 +290,7 @@ class PlantedVectorEnv(VectorEnv):
         self.task = task(task_name)
         self.num_envs = int(num_envs)
         if self.num_envs < 1:
-            raise ValueError(f"{self.task.gym_id}: num_envs must be at least 1, got {num_envs}")
+            raise InputError(f"{self.task.gym_id}: num_envs must be at least 1, got {num_envs}")
         mode = AutoresetMode(autoreset_mode)
         self.metadata = {"autoreset_mode": mode}
         self.single_observation_space, self.single_action_space = _spaces(self.task)

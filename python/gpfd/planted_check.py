@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from gpfd._core import FeatureSet
+from gpfd._core import FeatureSet, InputError
 from gpfd.planted import PlantedVectorEnv, Task, task
 
 #: R^2 at or above which a needed feature counts as carried.
@@ -106,6 +106,11 @@ def carried(features: FeatureSet, task_name: str, n: int = 2000, seed: int = 0) 
     """How far `features` (read against the task's variables x0 .. x{d-1}) carry what the task
     `task_name` needs, on n visited states."""
     t = task(task_name)
+    if features.input_dim != t.variables:
+        raise InputError(
+            f"{t.gym_id} has {t.variables} variables (x0 .. x{t.variables - 1}); the feature set "
+            f"reads {features.input_dim} ({', '.join(features.variables)})"
+        )
     states = sample_states(t, n, seed)
     phi = np.asarray(features(states), dtype=np.float64).reshape(n, -1)
     r2 = {name: r_squared(f(states), phi) for name, f in t.needed}

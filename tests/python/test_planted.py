@@ -104,9 +104,14 @@ def test_vector_form_takes_a_seed_per_lane_and_a_reset_mask():
         envs.reset(seed=[1])
 
 
-def test_unknown_task_is_named():
-    with pytest.raises(ValueError, match="no planted task 'Sum'.*Product"):
+def test_bad_input_is_named():
+    with pytest.raises(gpfd.InputError, match="no planted task 'Sum'.*Product"):
         planted.task("Sum")
+    with pytest.raises(gpfd.InputError, match="num_envs must be at least 1"):
+        planted.PlantedVectorEnv("Ratio", 0)
+    three = gpfd.FeatureSet.parse("x0 * x2\n", variables=["x0", "x1", "x2"])
+    with pytest.raises(gpfd.InputError, match="PlantedProduct-v0 has 2 variables.*reads 3"):
+        planted_check.carried(three, "Product")
 
 
 def test_the_raw_variables_carry_nothing_needed():
