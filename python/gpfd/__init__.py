@@ -7,6 +7,8 @@ The core is gpfd's C++ library; this package is a thin front over it:
   environments in Gymnasium (``gymnasium.make``, ``gymnasium.make_vec``), registered on import;
   ``gpfd/GymnasiumCartPole-v1``: Gymnasium's CartPole-v1 task (two pushes, 500 steps), where
   ``gpfd/CartPole-v0`` defaults to a continuous force and 1000 steps.
+- ``gpfd/Planted<Name>-v0``: small tasks with a known answer (gpfd.planted; gpfd.planted_check
+  tells whether a feature set carries it).
 - ``wrappers.FeatureObservation``: a Gymnasium wrapper that shows an agent the features.
 - ``evolve``, ``fitness`` (``fitness_of_each``: many sets at once), ``assess``, ``load_run``:
   discovery, GP's fitness, the test protocol and results directories, as ``gpfd evolve`` and
@@ -18,6 +20,7 @@ docs/python.md in gpfd's repository is the guide.
 """
 
 from gpfd import envs as _envs
+from gpfd import planted as _planted
 from gpfd import wrappers
 from gpfd._core import FeatureSet, InputError, __version__
 from gpfd.discovery import Run, assess, builtin_configs, evolve, fitness, fitness_of_each, load_run
@@ -25,6 +28,7 @@ from gpfd.errors import EnvError
 from gpfd.vector_source import VectorFactory
 
 _envs.register_all()
+_planted.register_all()
 
 __all__ = [
     "EnvError",

@@ -251,7 +251,10 @@ def evolve(
         ``resume=``, never started over. The directory is locked while the run writes into it.
     set: any config key, ``{"gp.elitism": 0.2}`` or ``["gp.elitism=0.2"]`` (``--set``).
     time_budget: seconds, or text such as ``"10m"`` (``--time-budget``): sizes the population,
-        the generations and the validation to end within it, written to config.toml.
+        the generations and the validation to end within it, written to config.toml. The config
+        ``user-env`` (the default for an environment stepped in Python) holds 3 minutes; sizes
+        given (``population``, ``generations``, ``gp.population`` or ``gp.generations`` in
+        ``set``) replace a budget that comes from the config.
     callback: called after each generation (once its checkpoint is written) with its statistics
         (generation, best, mean, median, mean_size, mean_features, evaluations, cache_hits,
         seconds, best_features); a true return value stops the run there.

@@ -2,8 +2,9 @@
 
 An environment stepped in Python (gpfd.user_env) has a vector form when it comes as
 
-- a Gymnasium id whose spec has a ``vector_entry_point`` (gpfd's own ``gpfd/*`` ids, Gymnasium's
-  CartPole-v1): ``gymnasium.make_vec(id, num_envs, vectorization_mode="vector_entry_point")``;
+- a Gymnasium id whose spec has a ``vector_entry_point`` (gpfd's own ``gpfd/*`` ids, the planted
+  tasks among them, Gymnasium's CartPole-v1):
+  ``gymnasium.make_vec(id, num_envs, vectorization_mode="vector_entry_point")``;
 - an EnvPool task, ``env="envpool/CartPole-v1"`` (any id of ``envpool.list_all_envs()`` after the
   slash; ``pip install gpfd[envpool]``);
 - ``VectorFactory(make_vec)``, where ``make_vec(num_envs)`` returns a Gymnasium ``VectorEnv``.
@@ -13,9 +14,10 @@ call in the lanes of one vector environment (python/src/vector_hub.cpp, driving 
 here), shared by the players of a lockstep group (python/src/lockstep_group.hpp): one ``step``
 for all their lanes per time step. The episodes of a call all start
 with one ``reset``, each lane seeded from its episode's own stream where the vector environment
-takes one seed per sub-environment (gpfd's ``GpfdVectorEnv``, ``SyncVectorEnv``,
-``AsyncVectorEnv``, or ``VectorFactory(..., per_lane_seeds=True)``): lane l then gets the seed
-that the per-environment path gives ``reset(seed=...)``, and plays the same episode. Otherwise the
+takes one seed per sub-environment (gpfd's ``GpfdVectorEnv`` and ``PlantedVectorEnv``,
+``SyncVectorEnv``, ``AsyncVectorEnv``, or ``VectorFactory(..., per_lane_seeds=True)``): lane l
+then gets the seed that the per-environment path gives ``reset(seed=...)``, and plays the same
+episode. Otherwise the
 vector environment gets one seed mixed from all lanes' seeds (EnvPool, whose seeds are fixed when
 it is made: at its creation, once per lockstep group): the same seeds give the same episodes,
 but not those of the per-environment path. Any autoreset mode works
@@ -42,6 +44,7 @@ from gymnasium.wrappers import OrderEnforcing, PassiveEnvChecker
 from gpfd import _core, registry, vector_cache
 from gpfd.envs import GpfdEnv
 from gpfd.errors import EnvError
+from gpfd.planted import PlantedVectorEnv
 from gpfd.vector import GpfdVectorEnv
 
 if TYPE_CHECKING:
@@ -121,7 +124,7 @@ class GymnasiumSource(VectorSource):
         )
 
     def seeds_lanes(self, envs: VectorEnv) -> bool:
-        return isinstance(envs, (GpfdVectorEnv, SyncVectorEnv, AsyncVectorEnv))
+        return isinstance(envs, (GpfdVectorEnv, PlantedVectorEnv, SyncVectorEnv, AsyncVectorEnv))
 
 
 class EnvPoolSource(VectorSource):

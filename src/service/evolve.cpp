@@ -2,8 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <string_view>
 
 #include "gpfd/expr/genome.hpp"
 #include "gpfd/run/time_budget.hpp"
@@ -65,6 +67,21 @@ EvolveResult runSet(const run::ExperimentConfig& base, int runs,
   progress.setFinished(result.outcomes, options.outDir);
   result.finished = true;
   return result;
+}
+
+// Whether `overrides` (key=value) set `key`.
+bool givesKey(const std::vector<std::string>& overrides, std::string_view key) {
+  return std::any_of(overrides.begin(), overrides.end(), [&](const std::string& o) {
+    std::string_view name = std::string_view(o).substr(0, o.find('='));
+    while (!name.empty() && name.back() == ' ') name.remove_suffix(1);
+    while (!name.empty() && name.front() == ' ') name.remove_prefix(1);
+    return name == key;
+  });
+}
+
+bool givesSizes(const EvolveRequest& request) {
+  return request.generations || givesKey(request.overrides, "gp.population") ||
+         givesKey(request.overrides, "gp.generations");
 }
 
 // The config a resume is checked against: a config with a time budget stands for the sizes
@@ -183,6 +200,9 @@ EvolveResult evolve(const EvolveRequest& request, EvolveProgress& progress,
     overrides.push_back("gp.generations=" + std::to_string(*request.generations));
   }
   auto config = loadConfig(request.config, overrides);
+  // Sizes given (the generations, gp.population, gp.generations) replace a time budget that
+  // comes from the config (user-env's default), unless the budget is given too.
+  if (givesSizes(request) && !givesKey(overrides, "time_budget")) config.timeBudget = 0.0;
   const int runs = request.runs.value_or(1);
   double perRunSeconds = 0.0;  // A time budget's share of each run.
   if (config.timeBudget > 0.0) {

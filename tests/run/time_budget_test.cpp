@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "cli_helpers.hpp"
 #include "gpfd/service/configs.hpp"
@@ -105,6 +106,27 @@ TEST(TimeBudget, ARunWritesItsSizesAndAResumeReusesThem) {
   ASSERT_TRUE(service::evolve(rerun, quiet, go).finished);
   EXPECT_EQ(fingerprint(again), fingerprint(dir));
   EXPECT_FALSE(nlohmann::json::parse(readText(again + "/run.json")).contains("time_budget"));
+}
+
+TEST(TimeBudget, SizesGivenReplaceTheConfigsBudget) {
+  // The config's 4 s budget yields to gp.population and gp.generations set, and to the
+  // generations asked for (--generations, generations=).
+  service::EvolveProgress quiet;
+  const std::atomic<bool> go{false};
+  const auto sized = [&](const std::string& name, std::vector<std::string> overrides,
+                         std::optional<int> generations) {
+    service::EvolveRequest request;
+    request.config = budgetConfig();
+    request.overrides = std::move(overrides);
+    request.generations = generations;
+    request.out = {freshDir(name), false, "--out"};
+    request.threads = 1;
+    EXPECT_TRUE(service::evolve(request, quiet, go).finished) << name;
+    return nlohmann::json::parse(readText(request.out.dir + "/run.json"));
+  };
+  EXPECT_FALSE(
+      sized("sizes-keys", {"gp.population=6", "gp.generations=1"}, {}).contains("time_budget"));
+  EXPECT_FALSE(sized("sizes-flag", {"gp.population = 6"}, 1).contains("time_budget"));
 }
 
 TEST(TimeBudget, ABudgetTooShortForTheSmallestRunIsRefused) {
