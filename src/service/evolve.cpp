@@ -69,13 +69,10 @@ EvolveResult runSet(const run::ExperimentConfig& base, int runs,
   return result;
 }
 
-// Whether `overrides` (key=value) set `key`.
+// Whether `overrides` (key=value, the key as the config reads it: no spaces) set `key`.
 bool givesKey(const std::vector<std::string>& overrides, std::string_view key) {
   return std::any_of(overrides.begin(), overrides.end(), [&](const std::string& o) {
-    std::string_view name = std::string_view(o).substr(0, o.find('='));
-    while (!name.empty() && name.back() == ' ') name.remove_suffix(1);
-    while (!name.empty() && name.front() == ' ') name.remove_prefix(1);
-    return name == key;
+    return std::string_view(o).substr(0, o.find('=')) == key;
   });
 }
 

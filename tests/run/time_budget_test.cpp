@@ -122,11 +122,11 @@ TEST(TimeBudget, SizesGivenReplaceTheConfigsBudget) {
     request.out = {freshDir(name), false, "--out"};
     request.threads = 1;
     EXPECT_TRUE(service::evolve(request, quiet, go).finished) << name;
-    return nlohmann::json::parse(readText(request.out.dir + "/run.json"));
+    return nlohmann::json::parse(readText(*request.out.dir + "/run.json"));
   };
   EXPECT_FALSE(
       sized("sizes-keys", {"gp.population=6", "gp.generations=1"}, {}).contains("time_budget"));
-  EXPECT_FALSE(sized("sizes-flag", {"gp.population = 6"}, 1).contains("time_budget"));
+  EXPECT_FALSE(sized("sizes-flag", {"gp.population=6"}, 1).contains("time_budget"));
 }
 
 TEST(TimeBudget, ABudgetTooShortForTheSmallestRunIsRefused) {
