@@ -1,7 +1,8 @@
 """The one genome wire format (include/gpfd/expr/wire.hpp) through _core: the record that
 tests/expr/wire_test.cpp pins and tests/mpi/protocol_test.cpp sends in an MPI Task
-(tests/data/wire/genome-v1.bin) reads here as the Python workers read it, and what this side
-writes is that record, byte for byte; a genome keeps its printed form, values and fitness."""
+(tests/data/wire/genome-v1.bin) reads here (genome_from_wire) as the Python workers read it,
+and what this side writes (genome_to_wire) is that record, byte for byte; a genome keeps its
+printed form, values and fitness."""
 
 import numpy as np
 import pytest
@@ -20,12 +21,12 @@ def golden(repo) -> bytes:
 
 def test_the_golden_record_reads_and_writes_back(repo):
     record = golden(repo)
-    features = gpfd.FeatureSet._from_wire(record, VARIABLES)
+    features = _core.genome_from_wire(record, VARIABLES)
     assert features.show("sexpr") == GOLDEN_SEXPR
-    assert features._wire() == record
+    assert _core.genome_to_wire(features) == record
     # Through the features file's text and back: the same record, the same values to the bit.
     again = gpfd.FeatureSet(features.to_text(), variables=VARIABLES)
-    assert again._wire() == record
+    assert _core.genome_to_wire(again) == record
     obs = np.random.default_rng(35).uniform(-3, 3, size=(64, 3))
     assert features(obs).tobytes() == again(obs).tobytes()
 
@@ -36,14 +37,14 @@ def test_a_worker_plays_the_record_gpfd_would_play():
     features = gpfd.FeatureSet.parse("dx * th\nsin(th) + 0.25", env="cartpole")
     text = _core.resolved_config("cartpole-quick", [])
     [alone] = _core.fitness_of_each("cartpole-quick", [], [features], 11)
-    assert _core.trial_fitness_group(text, [(features._wire(), 11)]) == [alone]
+    assert _core.trial_fitness_group(text, [(_core.genome_to_wire(features), 11)]) == [alone]
 
 
 @pytest.mark.parametrize("cut", range(0, 40, 3))
 def test_truncated_or_other_version_records_are_clear_errors(repo, cut):
     record = golden(repo)
     with pytest.raises(gpfd.InputError, match="genome wire format"):
-        gpfd.FeatureSet._from_wire(record[:cut], VARIABLES)
+        _core.genome_from_wire(record[:cut], VARIABLES)
     other = record[:2] + bytes([9]) + record[3:]
     with pytest.raises(gpfd.InputError, match="version 9, this build of gpfd reads version 1"):
-        gpfd.FeatureSet._from_wire(other, VARIABLES)
+        _core.genome_from_wire(other, VARIABLES)
