@@ -84,7 +84,7 @@ def run(key: str, payload: bytes | None, function: Callable[..., Any], *args: An
 
 
 def fitness_group(config_text: str, group: list[tuple[bytes, int]]) -> list[float]:
-    """run::trialFitness of each (packed genome, seed) of a lockstep group."""
+    """run::trialFitness of each (genome wire record, seed) of a lockstep group."""
     return _core.trial_fitness_group(config_text, group)
 
 

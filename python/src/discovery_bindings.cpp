@@ -21,8 +21,8 @@
 
 #include "bindings.hpp"
 #include "feature_set.hpp"
-#include "genome_blob.hpp"
 #include "gpfd/env/environment.hpp"
+#include "gpfd/expr/wire.hpp"
 #include "gpfd/run/learning_task.hpp"
 #include "gpfd/service/assess.hpp"
 #include "gpfd/service/configs.hpp"
@@ -35,7 +35,7 @@
 namespace gpfd::python {
 namespace {
 
-// Fitness evaluation by a Python callable, evaluate(config_text, [(genome bytes, seed), ...]) ->
+// Fitness evaluation by a Python callable, evaluate(config_text, [(genome record, seed), ...]) ->
 // [fitness, ...], which runs run::trialFitness in worker processes (gpfd.user_env): for
 // environments stepped in Python, where threads would queue on the GIL. Same results as
 // ThreadEvaluator, since each genome's fitness depends on its own seed only.
@@ -55,7 +55,7 @@ class PythonBatchEvaluator final : public gp::Evaluator {
     nb::gil_scoped_acquire gil;
     nb::list tasks;
     for (std::size_t i = 0; i < genomes.size(); ++i) {
-      const std::string blob = packGenome(*genomes[i]);
+      const std::string blob = expr::wire::encodeGenome(*genomes[i]);
       tasks.append(nb::make_tuple(nb::bytes(blob.data(), blob.size()), seeds[i]));
     }
     const nb::object results = evaluate_(configText_, tasks);
@@ -360,16 +360,17 @@ nb::tuple evolve(const std::string& config, const std::vector<std::string>& over
   return nb::make_tuple(result.dir, result.finished, std::string());
 }
 
-// run::trialFitness of each packed genome with Rng(seed), all in one lockstep group
-// (lockstep_group.hpp): the worker processes' task (a group of one where there is no vector form).
+// run::trialFitness of each genome (a gpfd/expr/wire.hpp record) with Rng(seed), all in one
+// lockstep group (lockstep_group.hpp): the worker processes' task (a group of one where there is no
+// vector form).
 std::vector<double> trialFitnessGroupOf(
     const std::string& configText, const std::vector<std::pair<nb::bytes, std::uint64_t>>& tasks) {
   const run::LearningTask& task = cachedTask(configText, run::LearningTask::Budget::Trial);
   std::vector<expr::Genome> genomes;
   std::vector<std::uint64_t> seeds;
   for (const auto& [genome, seed] : tasks) {
-    genomes.push_back(unpackGenome(std::string_view(genome.c_str(), genome.size()),
-                                   static_cast<int>(task.stateDim())));
+    genomes.push_back(expr::wire::decodeGenome(std::string_view(genome.c_str(), genome.size()),
+                                               static_cast<int>(task.stateDim())));
     seeds.push_back(seed);
   }
   nb::gil_scoped_release release;
@@ -465,7 +466,7 @@ void bindDiscovery(nb::module_& m) {
         "Ctrl-C stopped "
         "it, else empty).");
   m.def("trial_fitness_group", &trialFitnessGroupOf, nb::arg("config_text"), nb::arg("tasks"),
-        "run::trialFitness of each (packed genome, seed), played in one lockstep group: the "
+        "run::trialFitness of each (genome wire record, seed), played in one lockstep group: the "
         "evaluations' episodes share one vector environment (the worker processes' task).");
   m.def("fitness_of_each", &fitnessOfEach, nb::arg("config"), nb::arg("overrides"),
         nb::arg("features"), nb::arg("seed"),

@@ -17,6 +17,7 @@
 #include "bindings.hpp"
 #include "gpfd/expr/export.hpp"
 #include "gpfd/expr/simplify.hpp"
+#include "gpfd/expr/wire.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
 
@@ -255,6 +256,27 @@ void bindFeatureSet(nb::module_& m) {
       .def("__setstate__", [](FeatureSet& s, const std::pair<std::string, std::string>& state) {
         new (&s) FeatureSet(expr::parseFeaturesFile(state.first, "<pickle>"), state.second);
       });
+  // The genome wire format of the MPI and Python workers (gpfd/expr/wire.hpp), for its tests.
+  m.def(
+      "genome_to_wire",
+      [](const FeatureSet& s) {
+        const std::string record = expr::wire::encodeGenome(s.file().genome);
+        return nb::bytes(record.data(), record.size());
+      },
+      nb::arg("features"), "The record of the features' genome in the genome wire format.");
+  m.def(
+      "genome_from_wire",
+      [](const nb::bytes& record, const expr::VariableNames& variables, const std::string& env) {
+        expr::FeaturesFile file;
+        file.env = env;
+        file.variables = variables;
+        // As the workers read it (trial_fitness_group, the MPI worker): checked over variables.
+        file.genome = expr::wire::decodeGenome(std::string_view(record.c_str(), record.size()),
+                                               static_cast<int>(variables.size()));
+        return FeatureSet(std::move(file), "wire");
+      },
+      nb::arg("record"), nb::arg("variables"), nb::arg("env") = "",
+      "The features of a genome wire record over `variables`.");
 }
 
 }  // namespace gpfd::python

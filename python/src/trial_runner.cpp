@@ -9,7 +9,7 @@
 #include <mutex>
 #include <stdexcept>
 
-#include "genome_blob.hpp"
+#include "gpfd/expr/wire.hpp"
 #include "gpfd/fibers/scheduler.hpp"
 #include "gpfd/run/run_grid.hpp"
 #include "lockstep_group.hpp"
@@ -19,9 +19,9 @@ namespace {
 
 using Budget = run::LearningTask::Budget;
 
-// (kind, genome bytes, with_original, fourier order): what a worker rebuilds the set from.
+// (kind, genome wire record, with_original, fourier order): what a worker rebuilds the set from.
 nb::tuple featuresToPython(const run::TrialFeatures& f) {
-  const std::string blob = packGenome(f.genome);
+  const std::string blob = expr::wire::encodeGenome(f.genome);
   return nb::make_tuple(static_cast<int>(f.kind), nb::bytes(blob.data(), blob.size()),
                         f.withOriginal, f.fourierOrder);
 }
@@ -34,7 +34,8 @@ run::TrialFeatures featuresFromPython(const nb::tuple& t, int variableCount) {
   }
   f.kind = static_cast<run::TrialFeatures::Kind>(kind);
   const auto genome = nb::cast<nb::bytes>(t[1]);
-  f.genome = unpackGenome(std::string_view(genome.c_str(), genome.size()), variableCount);
+  f.genome =
+      expr::wire::decodeGenome(std::string_view(genome.c_str(), genome.size()), variableCount);
   f.withOriginal = nb::cast<bool>(t[2]);
   f.fourierOrder = nb::cast<int>(t[3]);
   return f;

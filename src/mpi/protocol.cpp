@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string_view>
 #include <thread>
+
+#include "gpfd/expr/wire.hpp"
 
 namespace gpfd::mpi::protocol {
 
@@ -21,16 +24,10 @@ Writer& Writer::putString(const std::string& text) {
   return *this;
 }
 
-// Per feature: its node count, then per node op (u8), var (u16), length (u32), value (f64).
 Writer& Writer::putGenome(const expr::Genome& genome) {
-  put(static_cast<std::uint32_t>(genome.featureCount()));
-  for (std::size_t k = 0; k < genome.featureCount(); ++k) {
-    const auto tree = genome.feature(k);
-    put(static_cast<std::uint32_t>(tree.size()));
-    for (const auto& node : tree) {
-      put(static_cast<std::uint8_t>(node.op)).put(node.var).put(node.length).put(node.value);
-    }
-  }
+  std::string record;
+  expr::wire::appendGenome(record, genome);
+  bytes_.insert(bytes_.end(), record.begin(), record.end());
   return *this;
 }
 
@@ -47,27 +44,7 @@ std::string Reader::getString() {
 }
 
 expr::Genome Reader::getGenome(int variableCount) {
-  expr::Genome genome;
-  const auto features = get<std::uint32_t>();
-  for (std::uint32_t k = 0; k < features; ++k) {
-    const auto size = get<std::uint32_t>();
-    if (size == 0 || size > static_cast<std::uint32_t>(expr::kMaxParseSize)) {
-      throw std::runtime_error("MPI message: bad feature size");
-    }
-    expr::Tree tree(size);
-    for (auto& node : tree) {
-      const auto op = get<std::uint8_t>();
-      if (op >= expr::kOpCount) throw std::runtime_error("MPI message: bad opcode");
-      node.op = static_cast<expr::Op>(op);
-      node.var = get<std::uint16_t>();
-      node.length = get<std::uint32_t>();
-      node.value = get<double>();
-    }
-    const std::string problem = expr::checkTree(tree, variableCount);
-    if (!problem.empty()) throw std::runtime_error("MPI message: bad genome: " + problem);
-    genome.addFeature(tree);
-  }
-  return genome;
+  return expr::wire::readGenome(std::string_view(bytes_.data(), bytes_.size()), at_, variableCount);
 }
 
 std::vector<char> receive(const MPI_Status& status) {

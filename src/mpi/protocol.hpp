@@ -3,7 +3,7 @@
 //
 //   master -> worker  Config    version, resolved config (TOML text), heartbeat period (ms)
 //   worker -> master  Ready     credit: how many tasks it evaluates at once (threads), host
-//   master -> worker  Task      task number, seed, genome (binary)
+//   master -> worker  Task      task number, seed, genome (gpfd/expr/wire.hpp's record)
 //   worker -> master  Result    task number, fitness
 //   worker -> master  Failure   task number (kNoTask for setup), input error?, what, where, host
 //   worker -> master  Heartbeat (empty): sent when nothing else was sent for a heartbeat period
@@ -60,6 +60,7 @@ class Writer {
     return *this;
   }
   Writer& putString(const std::string& text);
+  // The genome's record in the one wire format (gpfd/expr/wire.hpp).
   Writer& putGenome(const expr::Genome& genome);
   std::vector<char> take() { return std::move(bytes_); }
 
@@ -81,7 +82,8 @@ class Reader {
     return value;
   }
   std::string getString();
-  // The genome, checked: well-formed trees over `variableCount` variables.
+  // The genome (expr::wire::readGenome), checked: well-formed trees over `variableCount`
+  // variables; expr::wire::WireError when the record is truncated, corrupt or of another version.
   expr::Genome getGenome(int variableCount);
 
  private:
