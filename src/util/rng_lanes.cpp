@@ -12,10 +12,12 @@ using Doubles = double __attribute__((vector_size(32)));
 using UnalignedWords = std::uint64_t __attribute__((vector_size(32), aligned(8), may_alias));
 using UnalignedDoubles = double __attribute__((vector_size(32), aligned(8), may_alias));
 
-inline Words rotl(Words x, int k) { return (x << k) | (x >> (64 - k)); }
+// The helpers that take or return 32-byte vectors are AVX2 kernels too: they are only called from
+// one, and a 32-byte vector passed to a function without AVX changes its ABI (clang refuses it).
+GPFD_AVX2_KERNEL inline Words rotl(Words x, int k) { return (x << k) | (x >> (64 - k)); }
 
 // Exact double of integers below 2^52: their bits under the exponent of 2^52, minus 2^52.
-inline Doubles exactDouble(Words x) {
+GPFD_AVX2_KERNEL inline Doubles exactDouble(Words x) {
   const Words exponent = {0x4330000000000000u, 0x4330000000000000u, 0x4330000000000000u,
                           0x4330000000000000u};
   return (Doubles)(x | exponent) - 0x1.0p52;
