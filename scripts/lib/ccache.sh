@@ -4,5 +4,5 @@
 # to the checkout). CMake reads CMAKE_CXX_COMPILER_LAUNCHER when it first configures a build
 # directory; one configured without it and then with it would recompile everything.
 if command -v ccache >/dev/null; then
-  export CMAKE_CXX_COMPILER_LAUNCHER=ccache CCACHE_BASEDIR="$PWD"
+  export CMAKE_CXX_COMPILER_LAUNCHER=ccache CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true
 fi
