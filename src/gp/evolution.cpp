@@ -8,6 +8,7 @@
 #include <limits>
 #include <numeric>
 
+#include "gpfd/gp/fitness_cache.hpp"
 #include "gpfd/gp/init.hpp"
 #include "gpfd/gp/operators.hpp"
 #include "gpfd/util/error.hpp"
@@ -78,11 +79,13 @@ double crossoverProbability(const GpConfig& c) {
   return sum;
 }
 
-Evolution::Evolution(GpConfig config, SearchSpace space, Evaluator& evaluator, GenomeReducer reduce)
+Evolution::Evolution(GpConfig config, SearchSpace space, Evaluator& evaluator, GenomeReducer reduce,
+                     GenomeFilter admissible)
     : config_(config),
       space_(std::move(space)),
       evaluator_(evaluator),
       reduce_(std::move(reduce)),
+      admissible_(std::move(admissible)),
       rng_(deriveSeed(config.seed, kVariationStream)) {
   validate(config_);
   operators_ = OperatorRegistry::global().operators();
@@ -94,6 +97,13 @@ GenerationStats Evolution::initialize() {
   const double start = nowSeconds();
   generation_ = 0;
   population_.clear();
+  if (config_.distinctOffspring) {
+    std::set<std::string> keys;
+    for (auto& g : distinctChildren(static_cast<std::size_t>(config_.population), keys, true)) {
+      population_.push_back({std::move(g), 0.0, 0.0});
+    }
+    return evaluate(start);
+  }
   for (int i = 0; i < config_.population; ++i) {
     population_.push_back({reduced(randomGenome(rng_, space_)), 0.0, 0.0});
   }
@@ -112,8 +122,16 @@ GenerationStats Evolution::step() {
   std::vector<Individual> next;
   next.reserve(population_.size());
   for (std::size_t e = 0; e < elites; ++e) next.push_back(population_[order[e]]);
-  auto children = breed(population_.size() - elites);
-  for (auto& g : children) next.push_back({reduced(std::move(g)), 0.0, 0.0});
+  if (config_.distinctOffspring) {
+    std::set<std::string> keys;
+    for (const auto& elite : next) keys.insert(canonicalKey(elite.genome));
+    for (auto& g : distinctChildren(population_.size() - elites, keys, false)) {
+      next.push_back({std::move(g), 0.0, 0.0});
+    }
+  } else {
+    for (auto& g : breed(population_.size() - elites))
+      next.push_back({reduced(std::move(g)), 0.0, 0.0});
+  }
   population_ = std::move(next);
   ++generation_;
   return evaluate(start);
@@ -182,6 +200,35 @@ std::vector<expr::Genome> Evolution::breed(std::size_t count) {
     } else {
       const expr::Genome& parent = tournament().genome;
       children.push_back(std::get<Mutation>(apply)(rng_, parent, space_));
+    }
+  }
+  return children;
+}
+
+std::vector<expr::Genome> Evolution::distinctChildren(std::size_t count,
+                                                      std::set<std::string>& keys, bool random) {
+  std::vector<expr::Genome> children;
+  children.reserve(count);
+  int refused = 0;  // In a row, for the child being made.
+  while (children.size() < count) {
+    std::vector<expr::Genome> batch;
+    if (random || refused >= kBreedRetries) {
+      batch.push_back(randomGenome(rng_, space_));
+    } else {
+      batch = breed(std::min<std::size_t>(2, count - children.size()));
+    }
+    for (auto& candidate : batch) {
+      if (children.size() == count) break;
+      auto genome = reduced(std::move(candidate));
+      std::string key = canonicalKey(genome);
+      const bool fresh = !keys.contains(key) && (!admissible_ || admissible_(genome));
+      if (!fresh && refused < kBreedRetries + kRandomRetries) {
+        ++refused;
+        continue;
+      }
+      keys.insert(std::move(key));
+      children.push_back(std::move(genome));
+      refused = 0;
     }
   }
   return children;

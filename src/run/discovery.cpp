@@ -31,6 +31,12 @@ gp::GenomeReducer reducer(const ExperimentConfig& config, const LearningTask& ta
   return RedundancyFilter(task.stateSample(), config.withOriginal, config.limits.minFeatures);
 }
 
+gp::GenomeFilter admissible(const ExperimentConfig& config, const LearningTask& task) {
+  if (!config.rejectConstant || config.withOriginal) return {};
+  return
+      [sample = task.stateSample()](const expr::Genome& g) { return variesOnSample(g, *sample); };
+}
+
 }  // namespace
 
 struct Discovery::State {
@@ -59,7 +65,7 @@ struct Discovery::State {
         cache(*evaluator, c.trials, c.maxTrials,
               static_cast<int>(std::lround(c.reevaluationShare * c.gp.population))),
         evolution(gpConfig(c), searchSpace(c, static_cast<int>(task.stateDim())), cache,
-                  reducer(c, task)) {}
+                  reducer(c, task), admissible(c, task)) {}
 
   std::unique_ptr<gp::Evaluator> makeEvaluator() {
     if (options.makeEvaluator) {

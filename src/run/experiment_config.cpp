@@ -67,6 +67,7 @@ void visit(V& v, ExperimentConfig& c) {
   v.integer("genome", "init_max_features", c.initMaxFeatures, 1, 1000);
   v.integer("genome", "mutation_depth", c.mutationDepth, 1, 64);
   v.boolean("genome", "drop_redundant", c.dropRedundant);
+  v.boolean("genome", "reject_constant", c.rejectConstant);
   v.integer("gp", "population", c.gp.population, 2, 1000000);
   v.integer("gp", "generations", c.gp.generations, 1, 1000000);
   v.weights("gp.operators", c.gp.operatorWeights);
@@ -76,6 +77,7 @@ void visit(V& v, ExperimentConfig& c) {
   }
   v.real("gp", "elitism", c.gp.elitism, 0.0, 0.99);
   v.integer("gp", "tournament_size", c.gp.tournamentSize, 1, 1000);
+  v.boolean("gp", "distinct_offspring", c.gp.distinctOffspring);
   v.integer("validation", "candidates", c.validation.candidates, 0, 1000);
   v.integer("validation", "seeds", c.validation.seeds, 2, 100000);
   v.integer("validation", "every", c.validation.every, 0, 1000000);
@@ -367,6 +369,10 @@ void validateAt(const ExperimentConfig& c, const Place& place) {
   require(c.initMinDepth <= c.initMaxDepth,
           "genome.init_min_depth must not exceed genome.init_max_depth",
           place("genome", "init_min_depth"));
+  require(!c.rejectConstant || c.gp.distinctOffspring,
+          "genome.reject_constant needs gp.distinct_offspring = true (it refuses children as that "
+          "does)",
+          place("genome", "reject_constant"));
   validateGp(c.gp, place);
 }
 

@@ -33,7 +33,7 @@ LearningTask::LearningTask(const ExperimentConfig& config, Budget budget)
   stateNames_ = environment->stateNames();
   rl::LearnerRegistry::global().checkSuitable(config_.learner, *environment);
   learner_ = rl::LearnerRegistry::global().make(config_.learner, learnerParams_);
-  if (config_.dropRedundant || config_.normalise) {
+  if (config_.dropRedundant || config_.normalise || config_.rejectConstant) {
     sample_ = std::make_shared<const FeatureSample>(
         sampleVisitedStates(*environment, static_cast<std::size_t>(config_.stateSample),
                             deriveSeed(config_.seed, kStateSampleStream)),

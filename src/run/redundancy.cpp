@@ -67,6 +67,16 @@ expr::Genome RedundancyFilter::operator()(const expr::Genome& genome) const {
   return out;
 }
 
+bool variesOnSample(const expr::Genome& genome, const FeatureSample& sample) {
+  const std::vector<double> ones(sample.rows(), 1.0);
+  for (std::size_t k = 0; k < genome.featureCount(); ++k) {
+    Span span(sample.rows());
+    span.add(ones);
+    if (span.add(sample.column(genome, k))) return true;
+  }
+  return false;
+}
+
 bool isPlaceholder(expr::TreeView feature) {
   return feature.size() == 1 && feature[0].op == expr::Op::Const && feature[0].value == 0.0;
 }

@@ -157,7 +157,7 @@ double finishSeconds(const ExperimentConfig& config, const CostMeasure& costs,
 }
 
 BudgetSizes sizeToBudget(const ExperimentConfig& config, const CostMeasure& costs, double seconds,
-                         const std::string& where) {
+                         const std::string& where, int runs) {
   const auto& v = config.validation;
   BudgetSizes sizes{0, 0, v.candidates, v.seeds, v.confirmSeeds, 0.0, 0.0};
   // Validation and confirmation: the config's sizes, shrunk to their share when they exceed it.
@@ -190,12 +190,21 @@ BudgetSizes sizeToBudget(const ExperimentConfig& config, const CostMeasure& cost
   sizes.predictedSeconds = gpSeconds(costs, sizes.population, expected) + sizes.finishSeconds;
   if (expected < 2) {
     const double least = gpSeconds(costs, kMinPopulation, 2) + sizes.finishSeconds;
+    const std::string smallest = fmt::format(
+        "the smallest run (population {}, 2 generations, {} candidates x {} validation seeds, {} "
+        "confirmation seeds) takes about {:.0f} s",
+        kMinPopulation, sizes.candidates, sizes.seeds, sizes.confirmSeeds, least);
+    const double total = seconds * runs + costs.seconds;
+    const double needed = least * runs + costs.seconds;
     throw InputError(
-        fmt::format("{:.0f} s is too short here: the smallest run (population {}, 2 generations, "
-                    "{} candidates x {} validation seeds, {} confirmation seeds) takes about "
-                    "{:.0f} s after {:.1f} s of measuring what an evaluation costs",
-                    seconds + costs.seconds, kMinPopulation, sizes.candidates, sizes.seeds,
-                    sizes.confirmSeeds, least, costs.seconds),
+        runs == 1
+            ? fmt::format("{:.0f} s is too short here: {} after {:.1f} s of measuring what an "
+                          "evaluation costs; give at least {:.0f} s, or the sizes",
+                          total, smallest, costs.seconds, std::ceil(needed))
+            : fmt::format("{:.0f} s for {} runs is too short here: {}, so {} runs take "
+                          "about {:.0f} s with the {:.1f} s of measuring what an evaluation "
+                          "costs; give at least {:.0f} s, fewer runs, or the sizes",
+                          total, runs, smallest, runs, needed, costs.seconds, std::ceil(needed)),
         where);
   }
   return sizes;

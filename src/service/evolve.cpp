@@ -112,7 +112,7 @@ run::ExperimentConfig sizeToBudget(const run::ExperimentConfig& config, int runs
   }
   const auto costs = run::measureCosts(config, options, run::kMeasureShare * config.timeBudget);
   const auto sizes =
-      run::sizeToBudget(config, costs, (config.timeBudget - costs.seconds) / runs, where);
+      run::sizeToBudget(config, costs, (config.timeBudget - costs.seconds) / runs, where, runs);
   progress.budgetSized(run::budgetText(config.timeBudget, costs, sizes, runs));
   options.timeBudgetJson = run::budgetJson(config.timeBudget, costs, sizes);
   // Run r of a set ends by r shares of the budget after the measurement.

@@ -138,6 +138,106 @@ TEST(Evolution, TheReducerRewritesEveryNewGenome) {
   });
 }
 
+// How many distinct canonical keys a population holds.
+std::size_t distinctKeys(const std::vector<Individual>& population) {
+  std::set<std::string> keys;
+  for (const auto& ind : population) keys.insert(canonicalKey(ind.genome));
+  return keys.size();
+}
+
+// Whether a genome reads the variable x0 anywhere.
+bool readsX0(const expr::Genome& g) {
+  for (std::size_t k = 0; k < g.featureCount(); ++k) {
+    for (const auto& node : g.feature(k)) {
+      if (node.op == expr::Op::Var && node.var == 0) return true;
+    }
+  }
+  return false;
+}
+
+TEST(Evolution, DistinctOffspringKeepEveryGenerationFreeOfRepeats) {
+  // A long run on a cached, noise-free fitness converges: without distinct offspring the last
+  // generations repeat their best; with it no generation holds a genome twice.
+  for (const bool distinct : {false, true}) {
+    GpConfig config;
+    config.population = 40;
+    config.generations = 30;
+    config.tournamentSize = 7;
+    config.distinctOffspring = distinct;
+    SerialEvaluator evaluator([](const expr::Genome& g, Rng&) {
+      Rng fixed(1);
+      return noisyFitness(g, fixed);
+    });
+    CachingEvaluator cache(evaluator, 1, 0);
+    Evolution evolution(config, smallSpace(), cache);
+    std::size_t fewest = 40;
+    evolution.run([&](const GenerationStats&) {
+      fewest = std::min(fewest, distinctKeys(evolution.population()));
+      return true;
+    });
+    if (distinct) {
+      EXPECT_EQ(fewest, 40u);
+    } else {
+      EXPECT_LT(fewest, 30u);
+    }
+  }
+}
+
+TEST(Evolution, DistinctOffspringAreReproducibleAndLeaveOtherRunsAlone) {
+  const auto plain = runOnce(5);
+  expectSameStats(plain, runOnce(5));  // The default path is the one before the option.
+  GpConfig config;
+  config.population = 30;
+  config.generations = 6;
+  config.distinctOffspring = true;
+  config.seed = 5;
+  const auto once = [&] {
+    SerialEvaluator evaluator(noisyFitness);
+    CachingEvaluator cache(evaluator, 1, 0);
+    Evolution evolution(config, smallSpace(), cache);
+    std::vector<GenerationStats> all;
+    evolution.run([&](const GenerationStats& s) {
+      all.push_back(s);
+      return true;
+    });
+    return all;
+  };
+  expectSameStats(once(), once());
+}
+
+TEST(Evolution, TheFilterKeepsRefusedGenomesOut) {
+  GpConfig config;
+  config.population = 30;
+  config.generations = 5;
+  config.distinctOffspring = true;
+  SerialEvaluator evaluator(noisyFitness);
+  Evolution evolution(config, smallSpace(), evaluator, {}, readsX0);
+  evolution.run([&](const GenerationStats&) {
+    for (const auto& ind : evolution.population()) EXPECT_TRUE(readsX0(ind.genome));
+    return true;
+  });
+}
+
+TEST(Evolution, ASearchSpaceTooSmallForDistinctGenomesStillFillsItsGeneration) {
+  // One variable, one feature of depth 1 (one node), no constants: one genome exists.
+  SearchSpace tiny = smallSpace();
+  tiny.variableCount = 1;
+  tiny.limits = {1, 1, 1, 1};
+  tiny.initMinDepth = tiny.initMaxDepth = tiny.mutationDepth = 1;
+  tiny.primitives.constants.clear();
+  tiny.primitives.ephemeral = false;
+  GpConfig config;
+  config.population = 12;
+  config.generations = 3;
+  config.distinctOffspring = true;
+  SerialEvaluator evaluator(noisyFitness);
+  Evolution evolution(config, tiny, evaluator);
+  evolution.run([&](const GenerationStats&) {
+    EXPECT_EQ(evolution.population().size(), 12u);
+    return true;
+  });
+}
+
 TEST(Evolution, NonFiniteFitnessScoresWorst) {
   GpConfig config;
   config.population = 20;

@@ -143,6 +143,24 @@ TEST(ExperimentConfig, AnUnknownKeyGetsASuggestionOrTheKnownKeys) {
 }
 
 // The bug as reported: `evolve --seed` refused the seeds `evolve --runs` prints.
+TEST(ExperimentConfig, RejectingConstantGenomesNeedsDistinctOffspring) {
+  const std::string path = GPFD_SOURCE_DIR "/configs/cartpole-quick.toml";
+  try {
+    loadExperimentConfig(path, {"genome.reject_constant=true"});
+    FAIL() << "accepted genome.reject_constant without gp.distinct_offspring";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("gp.distinct_offspring"), std::string::npos);
+    EXPECT_NE(e.where().find("reject_constant"), std::string::npos) << e.where();
+  }
+  const auto both =
+      loadExperimentConfig(path, {"genome.reject_constant=true", "gp.distinct_offspring=true"});
+  EXPECT_TRUE(both.rejectConstant);
+  EXPECT_TRUE(both.gp.distinctOffspring);
+  // Written and read back (config.toml of a run, its resume).
+  const auto again = parseExperimentConfig(formatExperimentConfig(both), "config.toml");
+  EXPECT_TRUE(again.rejectConstant && again.gp.distinctOffspring);
+}
+
 TEST(ExperimentConfig, EvolveTakesABigSeedAndStoresIt) {
   const auto dir = gpfd::testing::freshDir("big-seed");
   const auto r = gpfd::testing::runGpfd(

@@ -50,6 +50,15 @@ TEST(Redundancy, DropsRepeatsLinearCombinationsAndConstants) {
             (std::vector<std::string>{"dth + th", "th"}));
 }
 
+TEST(Redundancy, AGenomeVariesWhenOneOfItsFeaturesDoes) {
+  const auto sample = cartPoleSample();
+  EXPECT_FALSE(variesOnSample(genome({"1.5"}), *sample));
+  EXPECT_FALSE(variesOnSample(genome({"th - th + 2", "cos(0)"}), *sample));
+  EXPECT_FALSE(variesOnSample(genome({"sqrt(0 - 1)"}), *sample));  // Non-finite everywhere.
+  EXPECT_TRUE(variesOnSample(genome({"2", "th * dth"}), *sample));
+  EXPECT_TRUE(variesOnSample(genome({"sin(x)"}), *sample));
+}
+
 TEST(Redundancy, KeepsNonlinearFeaturesEvenWhenClose) {
   // sin(th) and th differ by about th^3 / 6 on cart-pole's small angles: not redundant.
   const RedundancyFilter filter(cartPoleSample(), false, 1);

@@ -143,6 +143,25 @@ TEST(TimeBudget, ABudgetTooShortForTheSmallestRunIsRefused) {
     EXPECT_EQ(e.where(), "time_budget (--time-budget)");
     EXPECT_NE(std::string(e.what()).find("is too short here: the smallest run"), std::string::npos)
         << e.what();
+    EXPECT_NE(std::string(e.what()).find("give at least"), std::string::npos) << e.what();
+  }
+}
+
+TEST(TimeBudget, ABudgetTooShortForItsRunsNamesTheWholeBudget) {
+  service::EvolveRequest request;
+  request.config = "cartpole-quick";
+  request.overrides = {"time_budget=0.5"};
+  request.runs = 4;
+  request.out = {freshDir("budget-short-runs"), false, "--out"};
+  service::EvolveProgress quiet;
+  const std::atomic<bool> stop{false};
+  try {
+    service::evolve(request, quiet, stop);
+    FAIL() << "a 0.5 s budget for 4 runs was accepted";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("for 4 runs is too short here"), std::string::npos) << what;
+    EXPECT_NE(what.find("fewer runs"), std::string::npos) << what;
   }
 }
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,14 @@ struct GpConfig {
   // deriveSeed(seed, kEvaluationStream, generation), so that fitness differences within a
   // generation are paired. Otherwise each individual has its own seed.
   bool commonRandomNumbers = false;
+  // Distinct offspring: a child that repeats a genome of its generation (elites and the children
+  // before it, compared by canonicalKey after the reducer), or that the Evolution's filter
+  // refuses, is bred again; after kBreedRetries refusals in a row a random genome stands in
+  // (also checked), and after kRandomRetries more the last one is kept, so that a small search
+  // space still fills its generation. Generation 0 is drawn the same way. Without it a converged
+  // population breeds copies of its best, which the fitness cache answers without a trial: the
+  // generations go on, the search does not.
+  bool distinctOffspring = false;
   std::uint64_t seed = 1;
 };
 
@@ -72,6 +81,9 @@ struct EvolutionState {
 // Rewrites a new genome before it is evaluated (e.g. drops redundant features); must be a pure
 // function of the genome and keep it within the search space's limits.
 using GenomeReducer = std::function<expr::Genome(const expr::Genome&)>;
+// Whether a reduced genome may join the population (e.g. not constant on visited states); must be
+// a pure function of the genome. Used only with GpConfig::distinctOffspring.
+using GenomeFilter = std::function<bool(const expr::Genome&)>;
 
 // Contract: the run is a pure function of (config, space, fitness, reducer); evaluation seeds are
 // deriveSeed(config.seed, kEvaluationStream, generation, index), or deriveSeed(config.seed,
@@ -83,7 +95,11 @@ class Evolution {
   static constexpr std::uint64_t kVariationStream = 0;
   static constexpr std::uint64_t kEvaluationStream = 1;
 
-  Evolution(GpConfig config, SearchSpace space, Evaluator& evaluator, GenomeReducer reduce = {});
+  static constexpr int kBreedRetries = 8;
+  static constexpr int kRandomRetries = 8;
+
+  Evolution(GpConfig config, SearchSpace space, Evaluator& evaluator, GenomeReducer reduce = {},
+            GenomeFilter admissible = {});
 
   // Creates and evaluates generation 0.
   GenerationStats initialize();
@@ -108,6 +124,11 @@ class Evolution {
  private:
   const Individual& tournament();
   std::vector<expr::Genome> breed(std::size_t count);
+  // GpConfig::distinctOffspring: `count` reduced genomes, bred (or drawn at random: `random`),
+  // none repeating a key in `keys` (to which theirs are added), each admissible, as far as the
+  // retries allow.
+  std::vector<expr::Genome> distinctChildren(std::size_t count, std::set<std::string>& keys,
+                                             bool random);
   // Evaluates the whole population and computes the statistics.
   GenerationStats evaluate(double startSeconds);
   expr::Genome reduced(expr::Genome genome) const;
@@ -119,6 +140,7 @@ class Evolution {
   SearchSpace space_;
   Evaluator& evaluator_;
   GenomeReducer reduce_;
+  GenomeFilter admissible_;
   Rng rng_;
   int generation_ = -1;
   std::vector<Individual> population_;

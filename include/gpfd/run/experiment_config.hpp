@@ -62,6 +62,10 @@ struct ExperimentConfig {
   // Features linearly dependent on the earlier ones, the bias (and the original variables with
   // withOriginal) on sampled states are dropped from every new genome before it is evaluated.
   bool dropRedundant = true;
+  // With gp.distinct_offspring: a genome none of whose features varies on sampled states (the
+  // learner with it learns nothing: validation's no-learning reference) never joins the
+  // population; another is bred in its place. Moot beside the original variables.
+  bool rejectConstant = false;
   int initMinDepth = 2;
   int initMaxDepth = 4;
   int initMaxFeatures = 4;

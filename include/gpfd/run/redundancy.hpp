@@ -33,6 +33,11 @@ class RedundancyFilter {
   int minFeatures_;
 };
 
+// Whether some feature of the genome takes more than one value on the sample (genome.
+// reject_constant): beyond kDependenceTolerance of the span of the constant 1, non-finite values
+// counting as constant.
+bool variesOnSample(const expr::Genome& genome, const FeatureSample& sample);
+
 // The placeholder: the constant 0 as a feature. Beside the original variables it stands for "no
 // feature": the learner's feature map leaves it out, and a set of placeholders alone is the
 // original variables, which validation always scores anyway.

@@ -59,11 +59,11 @@ inline constexpr double kValidationShare = 0.3;
 // sets the population, the deadline ends the generations.
 inline constexpr double kFreshShare = 0.65;
 
-// Sizes for a run of `seconds` (the measurement's time already spent), from `config`'s own sizes
-// as the upper bound of the validation's. InputError at `where` when not even the smallest run
-// fits.
+// Sizes for each of `runs` runs of `seconds` (the measurement's time already spent), from
+// `config`'s own sizes as the upper bound of the validation's. InputError at `where` when not even
+// the smallest run fits, naming the whole budget that would.
 BudgetSizes sizeToBudget(const ExperimentConfig& config, const CostMeasure& costs, double seconds,
-                         const std::string& where);
+                         const std::string& where, int runs = 1);
 // The predicted seconds of validation and confirmation at `sizes`.
 double finishSeconds(const ExperimentConfig& config, const CostMeasure& costs,
                      const BudgetSizes& sizes);
