@@ -28,7 +28,8 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 gp::GenomeReducer reducer(const ExperimentConfig& config, const LearningTask& task) {
   if (!config.dropRedundant) return {};
-  return RedundancyFilter(task.stateSample(), config.withOriginal, config.limits.minFeatures);
+  return RedundancyFilter(task.stateSample(), config.withOriginal, config.limits.minFeatures,
+                          config.redundantR2);
 }
 
 gp::GenomeFilter admissible(const ExperimentConfig& config, const LearningTask& task) {

@@ -67,6 +67,7 @@ void visit(V& v, ExperimentConfig& c) {
   v.integer("genome", "init_max_features", c.initMaxFeatures, 1, 1000);
   v.integer("genome", "mutation_depth", c.mutationDepth, 1, 64);
   v.boolean("genome", "drop_redundant", c.dropRedundant);
+  v.real("genome", "redundant_r2", c.redundantR2, 0.5, 1.0);
   v.boolean("genome", "reject_constant", c.rejectConstant);
   v.integer("gp", "population", c.gp.population, 2, 1000000);
   v.integer("gp", "generations", c.gp.generations, 1, 1000000);

@@ -12,18 +12,23 @@ class Span {
  public:
   explicit Span(std::size_t rows) : rows_(rows) {}
 
-  // Adds `values` unless it lies in the span; returns whether it was added.
-  bool add(const std::vector<double>& values) {
+  // Adds `values` unless it lies in the span, or (when the span holds the constant 1 first) the
+  // span explains at least `explained` of its variance; returns whether it was added.
+  bool add(const std::vector<double>& values, double explained = 1.0) {
     Eigen::VectorXd v = Eigen::Map<const Eigen::VectorXd>(values.data(), values.size());
     const double scale = v.cwiseAbs().maxCoeff();
     if (!(scale > 0) || !std::isfinite(scale)) return false;  // Zero is in every span.
     v /= scale;  // Saturated values (DBL_MAX) would overflow the norms.
     const double norm = v.norm();
+    const double centred = (v.array() - v.mean()).matrix().norm();
     for (int pass = 0; pass < 2; ++pass) {
       for (const auto& q : basis_) v -= q.dot(v) * q;
     }
     const double residual = v.norm();
     if (!(residual > kDependenceTolerance * norm)) return false;
+    if (explained < 1.0 && !(residual * residual > (1.0 - explained) * centred * centred)) {
+      return false;
+    }
     basis_.push_back(v / residual);
     return true;
   }
@@ -36,8 +41,11 @@ class Span {
 }  // namespace
 
 RedundancyFilter::RedundancyFilter(std::shared_ptr<const FeatureSample> sample, bool withOriginal,
-                                   int minFeatures)
-    : sample_(std::move(sample)), withOriginal_(withOriginal), minFeatures_(minFeatures) {}
+                                   int minFeatures, double explained)
+    : sample_(std::move(sample)),
+      withOriginal_(withOriginal),
+      minFeatures_(minFeatures),
+      explained_(explained) {}
 
 expr::Genome RedundancyFilter::operator()(const expr::Genome& genome) const {
   Span span(sample_->rows());
@@ -48,7 +56,7 @@ expr::Genome RedundancyFilter::operator()(const expr::Genome& genome) const {
   std::vector<bool> keep(genome.featureCount());
   std::size_t kept = 0;
   for (std::size_t k = 0; k < genome.featureCount(); ++k) {
-    keep[k] = span.add(sample_->column(genome, k));
+    keep[k] = span.add(sample_->column(genome, k), explained_);
     kept += keep[k] ? 1 : 0;
   }
   for (std::size_t k = 0; k < genome.featureCount() && kept < std::size_t(minFeatures_); ++k) {

@@ -66,6 +66,15 @@ TEST(Redundancy, KeepsNonlinearFeaturesEvenWhenClose) {
   EXPECT_EQ(kept.featureCount(), 4u);
 }
 
+TEST(Redundancy, NearCopiesGoWhenTheSpanExplainsEnoughOfTheirVariance) {
+  // sin(sin(th)) beside sin(th) (cart-pole's small angles) and 3 * dth + x / 1000 beside dth:
+  // exact dependence keeps both, genome.redundant_r2 = 0.998 drops the near copies.
+  const auto set = genome({"sin(th)", "sin(sin(th))", "dth", "3 * dth + x / 1000", "th * dth"});
+  EXPECT_EQ(RedundancyFilter(cartPoleSample(), false, 1)(set).featureCount(), 5u);
+  EXPECT_EQ(infix(RedundancyFilter(cartPoleSample(), false, 1, 0.998)(set)),
+            (std::vector<std::string>{"sin(th)", "dth", "th * dth"}));
+}
+
 TEST(Redundancy, WithTheOriginalVariablesTheirCombinationsAreRedundant) {
   const RedundancyFilter filter(cartPoleSample(), true, 1);
   EXPECT_EQ(infix(filter(genome({"x - dth", "sin(th)", "dx"}))),

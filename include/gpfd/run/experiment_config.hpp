@@ -62,6 +62,10 @@ struct ExperimentConfig {
   // Features linearly dependent on the earlier ones, the bias (and the original variables with
   // withOriginal) on sampled states are dropped from every new genome before it is evaluated.
   bool dropRedundant = true;
+  // With drop_redundant: a feature is also dropped when the bias and the features kept before it
+  // explain at least this share of its variance on the sample (run/redundancy.hpp); 1: exact
+  // linear dependence only.
+  double redundantR2 = 1.0;
   // With gp.distinct_offspring: a genome none of whose features varies on sampled states (the
   // learner with it learns nothing: validation's no-learning reference) never joins the
   // population; another is bred in its place. Moot beside the original variables.

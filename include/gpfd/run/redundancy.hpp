@@ -22,8 +22,12 @@ class RedundancyFilter {
  public:
   // `minFeatures`: while fewer features remain, dropped ones are kept back, first first; when the
   // learner sees the original variables too, the constant 0 (a placeholder) is kept instead, so
-  // that no set hands the learner a second copy of a direction it already has.
-  RedundancyFilter(std::shared_ptr<const FeatureSample> sample, bool withOriginal, int minFeatures);
+  // that no set hands the learner a second copy of a direction it already has. `explained`
+  // (genome.redundant_r2): a feature is also dropped when the span explains at least this share
+  // of its variance on the sample, a near copy (sin(sin(u)) beside sin(u): 1 - R^2 about 1e-3),
+  // along which Rprop's separate steps let two weights drift apart; 1: exact dependence only.
+  RedundancyFilter(std::shared_ptr<const FeatureSample> sample, bool withOriginal, int minFeatures,
+                   double explained = 1.0);
   // The genome without its redundant features, the others in their order.
   expr::Genome operator()(const expr::Genome& genome) const;
 
@@ -31,6 +35,7 @@ class RedundancyFilter {
   std::shared_ptr<const FeatureSample> sample_;
   bool withOriginal_;
   int minFeatures_;
+  double explained_;
 };
 
 // Whether some feature of the genome takes more than one value on the sample (genome.
