@@ -13,6 +13,12 @@ carries only a job key, the genomes or feature sets and the seeds. Any
 - each worker keeps its last ``KEEP_JOBS`` jobs and ``KEEP_ENVS`` environments (least recently
   used first out); an environment is unpickled once per worker, whatever the number of jobs on it.
 
+An executor that loses a task silently when its worker is lost (mpi4py's ``MPIPoolExecutor``:
+the task's future never completes) gets its lost tasks sent again: once no result of a round has
+come for ``max(LOST_AFTER, LOST_FACTOR x`` the longest any task of its job took from submission
+to result``)``, each task of the round out that long, on a worker, is sent again (job attached);
+the first result of a task is the one taken, its other copies cancelled or ignored.
+
 A task's result depends on its job, genomes and seeds only, never on where it ran or how many
 times it was sent: the same seed gives the same run on any executor.
 """
@@ -21,7 +27,9 @@ from __future__ import annotations
 
 import hashlib
 import pickle
+import sys
 import threading
+import time
 from collections import OrderedDict
 from collections.abc import Callable, Iterator
 from concurrent.futures import FIRST_COMPLETED, Executor, Future, wait
@@ -33,6 +41,15 @@ from gpfd import _core, user_env
 
 KEEP_JOBS = 16
 KEEP_ENVS = 4
+
+# Executors (by the module of their class) whose lost worker takes its task with it, silently.
+# mpi4py.futures' MPIPoolExecutor (4.1.2, _core.client_exec) waits for a rank's answer until it
+# comes: under `mpiexec -disable-auto-cleanup` a dead rank's task stays running for ever, and the
+# rank gets no other task (docs/cluster.md, "mpi4py under srun or mpiexec"). Dask, Ray and gpfd's
+# pool run such a task again themselves; the others break as a whole (gpfd.evaluator).
+SILENT_LOSS = ("mpi4py.",)
+LOST_AFTER = 5.0  # Seconds: the least silence after which a task is taken as lost.
+LOST_FACTOR = 3.0  # ... and at least this many times its job's slowest task.
 
 
 class NeedJob:
@@ -96,6 +113,11 @@ def runs_group(config_text: str, budget: int, group: list[tuple[tuple, list[int]
 # ---- the driver's side ----
 
 
+def loses_tasks_silently(executor: Executor) -> bool:
+    """Whether a task of `executor` may never complete when its worker is lost (SILENT_LOSS)."""
+    return type(executor).__module__.startswith(SILENT_LOSS)
+
+
 def _digest(*parts: bytes) -> str:
     hasher = hashlib.sha256()
     for part in parts:
@@ -121,7 +143,9 @@ class Jobs:
         self._jobs: dict[str, tuple[str, bytes]] = {}  # config text -> (key, payload)
         self._sent: set[str] = set()  # Keys sent at least once.
         self.payloads_sent = 0  # Tasks sent with their job attached (tests read it).
+        self.resent = 0  # Tasks sent again, taken as lost (tests read it).
         self.pending: set[Future] = set()  # The futures of the round under way.
+        self._slowest: dict[str, float] = {}  # Job key -> longest submission-to-result seconds.
 
     def job(self, config_text: str) -> tuple[str, bytes]:
         """(key, payload) of the job of `config_text`."""
@@ -140,38 +164,100 @@ class Jobs:
     ) -> Iterator[Any]:
         """``function(config_text, *args)`` for each args of `work` on `executor`, results in
         order as each is done. A task's error is raised as soon as it comes; the tasks not yet
-        started are then cancelled (as they are when the iterator is dropped: Evaluator.close)."""
+        started are then cancelled (as they are when the iterator is dropped: Evaluator.close).
+        On an executor that loses tasks silently, a task taken as lost is sent again (above)."""
         key, payload = self.job(config_text)
         first = key not in self._sent
         self._sent.add(key)
         index: dict[Future, int] = {}
+        sent_at: dict[Future, float] = {}
+        out: dict[int, list[Future]] = {}  # Task -> its copies still out.
+        silent = loses_tasks_silently(executor)
 
         def submit(i: int, attach: bool) -> None:
             future = executor.submit(run, key, payload if attach else None, function, *work[i])
             self.payloads_sent += attach
             index[future] = i
+            sent_at[future] = time.monotonic()
+            out.setdefault(i, []).append(future)
             self.pending.add(future)
 
+        def drop(future: Future) -> None:
+            self.pending.discard(future)
+            index.pop(future, None)
+            sent_at.pop(future, None)
+
         results: dict[int, Any] = {}
+        last = time.monotonic()  # The round's start, then its last result.
         try:
             for i in range(len(work)):
                 submit(i, first and i < copies)
             turn = 0
             while turn < len(work):
-                done, _ = wait(self.pending, return_when=FIRST_COMPLETED)
+                quiet = self._quiet(key) if silent else None
+                timeout = None if quiet is None else max(0.0, last + quiet - time.monotonic())
+                done, _ = wait(self.pending, timeout=timeout, return_when=FIRST_COMPLETED)
+                if not done:
+                    assert quiet is not None
+                    last = self._send_lost(executor, out, sent_at, quiet, submit)
+                    continue
                 for future in done:
-                    self.pending.discard(future)
-                    i = index.pop(future)
+                    if future not in index:  # Dropped: a copy of a task already answered.
+                        continue
+                    i, began = index[future], sent_at[future]
+                    drop(future)
+                    out[i].remove(future)
                     value = future.result()
                     if isinstance(value, NeedJob):
                         submit(i, True)
-                    else:
-                        results[i] = value
+                        continue
+                    results[i] = value
+                    last = time.monotonic()
+                    self._slowest[key] = max(self._slowest.get(key, 0.0), last - began)
+                    for other in out.pop(i):  # Copies sent again, or the one taken as lost.
+                        other.cancel()
+                        drop(other)
                 while turn in results:
                     yield results.pop(turn)
                     turn += 1
         finally:
             self.cancel()
+
+    def _quiet(self, key: str) -> float | None:
+        """How long a round of job `key` may go without a result before its tasks out that long
+        are taken as lost; None before any task has come back (nothing to measure against)."""
+        slowest = self._slowest.get(key, max(self._slowest.values(), default=None))
+        return None if slowest is None else max(LOST_AFTER, LOST_FACTOR * slowest)
+
+    def _send_lost(
+        self,
+        executor: Executor,
+        out: dict[int, list[Future]],
+        sent_at: dict[Future, float],
+        quiet: float,
+        submit: Callable[[int, bool], None],
+    ) -> float:
+        """Sends again, job attached, each task whose copies have all been out `quiet` seconds
+        and handed to a worker (running), none answering; returns the time it did (the silence
+        counts again from then). A copy still queued waits for a worker: none is added to it, so
+        with every worker lost the round waits, one copy of each lost task queued."""
+        now = time.monotonic()
+        lost = [
+            i
+            for i, futures in out.items()
+            if futures and all(f.running() and now - sent_at[f] >= quiet for f in futures)
+        ]
+        for i in lost:
+            submit(i, True)
+        self.resent += len(lost)
+        if lost:
+            print(
+                f"gpfd: no result from {type(executor).__name__} for {quiet:.1f} s: {len(lost)} "
+                "task(s) out that long taken as lost with their worker(s), and sent again",
+                file=sys.stderr,
+                flush=True,
+            )
+        return now
 
     def cancel(self) -> None:
         """Cancels the tasks of the round under way that have not started."""

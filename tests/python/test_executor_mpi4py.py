@@ -1,8 +1,13 @@
 """gpfd.evolve(executor=MPIPoolExecutor()) under ``mpiexec -n 3 python -m mpi4py.futures``: the
 same run as threads=1, on this machine and across hosts made of network namespaces (marked
 multihost: root only, ``pytest -m multihost``); skipped where mpi4py or mpiexec is missing.
-A worker lost under mpi4py's pool ends the whole MPI job (seen with MPICH 4.0: hydra kills every
-rank); the directory keeps its last complete generation for resume=. Not tested here."""
+
+A worker killed mid-generation (DiesOnce): under ``mpiexec -disable-auto-cleanup`` with each
+worker alone under its hydra proxy (its own host, or here its own host name with the fork
+launcher), the other ranks go on, gpfd sends the lost task again (gpfd._jobs) and the run ends as
+threads=1's; the script ends the job with ``MPI_Abort(0)``, since mpi4py's shutdown would wait for
+the dead rank for ever. Without that flag hydra ends the whole job, and resume= continues the
+directory to the same run."""
 
 import ctypes
 import os
@@ -15,7 +20,9 @@ from typing import Any
 import pytest
 
 import gpfd
+from conftest import script_module
 from point_env import Point
+from test_executor_faults import DiesOnce, evolve
 from test_user_env_workers import SMALL, run_files
 
 HERE = Path(__file__).resolve().parent
@@ -31,6 +38,37 @@ if __name__ == "__main__":
     with MPIPoolExecutor() as executor:
         gpfd.evolve(env=Point, **{COMMON!r}, executor=executor, out=sys.argv[1], verbose=False)
 """
+
+# The worker that steps first once generation 0 is done dies (DiesOnce). The job then ends with
+# MPI_Abort: with a rank lost, mpi4py's shutdown (the end of ``python -m mpi4py.futures``) would
+# wait for it for ever; the exit code is hydra's, that of the abort (0 when evolve returned).
+FAULT_SCRIPT = """
+import os, sys, traceback
+from pathlib import Path
+from mpi4py import MPI
+from mpi4py.futures import MPIPoolExecutor
+import gpfd
+from test_executor_faults import COMMON, DiesOnce, arm_after_generation_0
+
+if __name__ == "__main__":
+    out, flags = sys.argv[1:3]
+    code = 1
+    try:
+        gpfd.evolve(env=DiesOnce, env_kwargs={"directory": flags, "parent": os.getpid()},
+                    **COMMON, executor=MPIPoolExecutor(),
+                    callback=arm_after_generation_0(Path(flags)), out=out, verbose=False)
+        code = 0
+    except BaseException:
+        traceback.print_exc()
+    sys.stdout.flush()
+    sys.stderr.flush()
+    MPI.COMM_WORLD.Abort(code)
+"""
+# One host, one hydra proxy per rank: three names of this machine, proxies started by fork. A
+# proxy ends the other ranks under it when one dies (docs/mpi.md, "Lost workers"), so a rank
+# alone under its own is the unit that can be lost.
+EACH_RANK_ITS_PROXY = ["-launcher", "fork", "-hosts", "127.0.0.1,127.0.0.2,127.0.0.3"]
+LOST = "taken as lost with their worker(s), and sent again"
 
 
 def loaded(name: str) -> str:
@@ -59,11 +97,34 @@ def mpi_library(tmp_path: Path) -> dict[str, str]:
     return env
 
 
-def test_mpi4py_pool_gives_threads_one(tmp_path):
+def mpiexec_or_skip() -> str:
     pytest.importorskip("mpi4py")
     mpiexec = shutil.which("mpiexec")
     if mpiexec is None:
         pytest.skip("no mpiexec")
+    return mpiexec
+
+
+def run_fault_script(tmp_path: Path, launch: list[str], name: str) -> subprocess.CompletedProcess:
+    """FAULT_SCRIPT as ``LAUNCH python -m mpi4py.futures ...``, writing tmp_path/NAME (its flags
+    in NAME-flags)."""
+    env = mpi_library(tmp_path)
+    script = tmp_path / "fault.py"
+    script.write_text(FAULT_SCRIPT)
+    flags = tmp_path / f"{name}-flags"
+    flags.mkdir()
+    program = [sys.executable, "-m", "mpi4py.futures", str(script), str(tmp_path / name)]
+    return subprocess.run(
+        [*launch, *program, str(flags)],
+        env=env,
+        timeout=300,
+        capture_output=True,
+        text=True,
+    )
+
+
+def test_mpi4py_pool_gives_threads_one(tmp_path):
+    mpiexec = mpiexec_or_skip()
     env = mpi_library(tmp_path)
     script = tmp_path / "run.py"
     script.write_text(SCRIPT)
@@ -76,13 +137,39 @@ def test_mpi4py_pool_gives_threads_one(tmp_path):
     assert run_files(tmp_path / "mpi") == run_files(one.dir)
 
 
+def test_mpi4py_pool_loses_no_evaluation_when_a_worker_dies(tmp_path):
+    reference = run_files(evolve(tmp_path, "one", threads=1).dir)
+    mpiexec = [mpiexec_or_skip(), "-disable-auto-cleanup", *EACH_RANK_ITS_PROXY, "-n", "3"]
+    done = run_fault_script(tmp_path, mpiexec, "mpi")
+    assert done.returncode == 0, done.stderr[-3000:]
+    assert (tmp_path / "mpi-flags/died").exists()  # A worker died mid-generation,
+    assert LOST in done.stderr  # and its task was sent again.
+    assert run_files(tmp_path / "mpi") == reference
+
+
+def test_mpi4py_job_ended_by_a_dead_worker_resumes_to_the_same_run(tmp_path):
+    """Without -disable-auto-cleanup hydra ends every rank when one dies: the directory keeps its
+    last complete generation, which resume= continues (here on threads) to the same run."""
+    reference = run_files(evolve(tmp_path, "one", threads=1).dir)
+    done = run_fault_script(tmp_path, [mpiexec_or_skip(), "-n", "3"], "mpi")
+    assert done.returncode != 0
+    assert (tmp_path / "mpi-flags/died").exists()
+    assert not (tmp_path / "mpi/validation.csv").exists()  # The run stopped in its generations.
+    run = gpfd.evolve(
+        resume=tmp_path / "mpi",
+        env=DiesOnce,
+        env_kwargs={"directory": str(tmp_path / "mpi-flags"), "parent": os.getpid()},
+        threads=2,
+        verbose=False,
+    )
+    assert run.finished and run_files(run.dir) == reference
+
+
 @pytest.mark.multihost
 def test_mpi4py_pool_across_namespaced_hosts_gives_threads_one(tmp_path):
     """The same under scripts/multihost: three hosts made of network namespaces, the driver on
     host 0, one worker on each other, every message over the bridge (root only)."""
-    pytest.importorskip("mpi4py")
-    if shutil.which("mpiexec") is None:
-        pytest.skip("no mpiexec")
+    mpiexec_or_skip()
     env = mpi_library(tmp_path)
     script = tmp_path / "run.py"
     script.write_text(SCRIPT)
@@ -97,3 +184,21 @@ def test_mpi4py_pool_across_namespaced_hosts_gives_threads_one(tmp_path):
     print(done.stdout.strip().splitlines()[-1])  # The time and the bytes on the wire.
     one = gpfd.evolve(env=Point, **COMMON, threads=1, out=tmp_path / "one", verbose=False)
     assert run_files(tmp_path / "mpi") == run_files(one.dir)
+
+
+@pytest.mark.multihost
+def test_mpi4py_pool_across_namespaced_hosts_loses_no_evaluation_when_a_worker_dies(tmp_path):
+    """The driver on host 0, one worker on each of hosts 1 and 2 (scripts/multihost), under
+    ``-disable-auto-cleanup``: a worker killed mid-generation, the run as threads=1's."""
+    mpiexec_or_skip()
+    why = script_module("multihost").usable()
+    if why:
+        pytest.skip(f"multihost: {why}")
+    reference = run_files(evolve(tmp_path, "one", threads=1).dir)
+    multihost = [sys.executable, str(HERE.parents[1] / "scripts" / "multihost"), "--hosts", "3"]
+    done = run_fault_script(tmp_path, [*multihost, "--", "-disable-auto-cleanup"], "mpi")
+    assert done.returncode == 0, done.stderr[-3000:]
+    print(done.stdout.strip().splitlines()[-1])  # The time and the bytes on the wire.
+    assert (tmp_path / "mpi-flags/died").exists()
+    assert LOST in done.stderr
+    assert run_files(tmp_path / "mpi") == reference
