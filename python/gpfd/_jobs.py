@@ -38,6 +38,7 @@ from typing import Any
 import cloudpickle
 
 from gpfd import _core, user_env
+from gpfd.workers import WorkerError
 
 KEEP_JOBS = 16
 KEEP_ENVS = 4
@@ -50,6 +51,7 @@ KEEP_ENVS = 4
 SILENT_LOSS = ("mpi4py.",)
 LOST_AFTER = 5.0  # Seconds: the least silence after which a task is taken as lost.
 LOST_FACTOR = 3.0  # ... and at least this many times its job's slowest task.
+RESEND_PAUSE = 0.5  # Seconds before a task that could not be sent to a worker is sent again.
 
 
 class NeedJob:
@@ -118,6 +120,16 @@ def loses_tasks_silently(executor: Executor) -> bool:
     return type(executor).__module__.startswith(SILENT_LOSS)
 
 
+def undelivered(error: BaseException) -> bool:
+    """Whether `error`, a task's, was raised by a silently losing executor's own machinery, the
+    task never reaching a worker: mpi4py's pool sets the MPI error of a send to a dead rank
+    (``Endpoint timeout`` once UCX has seen its connection close: docs/mpi.md, "Lost workers")
+    on the task's future. An error raised in a worker comes with the worker's traceback as its
+    cause (mpi4py's RemoteTraceback), and gpfd's tasks make no MPI call."""
+    remote = type(error.__cause__).__name__ == "RemoteTraceback"
+    return type(error).__module__.startswith(SILENT_LOSS) and not remote
+
+
 def _digest(*parts: bytes) -> str:
     hasher = hashlib.sha256()
     for part in parts:
@@ -146,6 +158,7 @@ class Jobs:
         self.resent = 0  # Tasks sent again, taken as lost (tests read it).
         self.pending: set[Future] = set()  # The futures of the round under way.
         self._slowest: dict[str, float] = {}  # Job key -> longest submission-to-result seconds.
+        self._told = False  # Whether a task that could not be sent was reported.
 
     def job(self, config_text: str) -> tuple[str, bytes]:
         """(key, payload) of the job of `config_text`."""
@@ -171,8 +184,12 @@ class Jobs:
         self._sent.add(key)
         index: dict[Future, int] = {}
         sent_at: dict[Future, float] = {}
-        out: dict[int, list[Future]] = {}  # Task -> its copies still out.
+        out: dict[int, list[Future]] = {}  # Task -> its copies out.
         silent = loses_tasks_silently(executor)
+        # Tasks whose copy could not be sent -> when: sent again at the next result, or after
+        # RESEND_PAUSE.
+        unsent: dict[int, float] = {}
+        failures: dict[int, int] = {}  # Task -> the sends that failed since the last result.
 
         def submit(i: int, attach: bool) -> None:
             future = executor.submit(run, key, payload if attach else None, function, *work[i])
@@ -188,7 +205,7 @@ class Jobs:
             sent_at.pop(future, None)
 
         results: dict[int, Any] = {}
-        last = time.monotonic()  # The round's start, then its last result.
+        answered = last = time.monotonic()  # The round's start, then its last result ...
         try:
             for i in range(len(work)):
                 submit(i, first and i < copies)
@@ -196,32 +213,83 @@ class Jobs:
             while turn < len(work):
                 quiet = self._quiet(key) if silent else None
                 timeout = None if quiet is None else max(0.0, last + quiet - time.monotonic())
+                if unsent:
+                    due = max(0.0, min(unsent.values()) + RESEND_PAUSE - time.monotonic())
+                    timeout = due if timeout is None else min(timeout, due)
                 done, _ = wait(self.pending, timeout=timeout, return_when=FIRST_COMPLETED)
-                if not done:
-                    assert quiet is not None
-                    last = self._send_lost(executor, out, sent_at, quiet, submit)
-                    continue
+                if quiet is not None and time.monotonic() - last >= quiet:
+                    # ... or, for the silence that makes a task lost, the last sent again.
+                    last = self._send_lost(executor, out, sent_at, quiet, unsent, submit)
                 for future in done:
                     if future not in index:  # Dropped: a copy of a task already answered.
                         continue
                     i, began = index[future], sent_at[future]
                     drop(future)
                     out[i].remove(future)
-                    value = future.result()
+                    try:
+                        value = future.result()
+                    except Exception as e:
+                        if not (silent and undelivered(e)):
+                            raise
+                        failures[i] = failures.get(i, 0) + 1
+                        silence = time.monotonic() - answered
+                        self._unsent(executor, e, failures[i], copies, silence, quiet)
+                        unsent[i] = time.monotonic()
+                        continue
                     if isinstance(value, NeedJob):
                         submit(i, True)
                         continue
                     results[i] = value
-                    last = time.monotonic()
+                    answered = last = time.monotonic()
+                    failures.clear()
                     self._slowest[key] = max(self._slowest.get(key, 0.0), last - began)
                     for other in out.pop(i):  # Copies sent again, or the one taken as lost.
                         other.cancel()
                         drop(other)
+                now = time.monotonic()
+                for i, when in sorted(unsent.items()):
+                    if answered >= when or now >= when + RESEND_PAUSE:
+                        del unsent[i]
+                        submit(i, True)
                 while turn in results:
                     yield results.pop(turn)
                     turn += 1
         finally:
             self.cancel()
+
+    def _unsent(
+        self,
+        executor: Executor,
+        error: Exception,
+        times: int,
+        workers: int,
+        silence: float,
+        quiet: float | None,
+    ) -> None:
+        """Takes a task that `executor` could not send to a worker (`error`, its `times`-th
+        failure since the round's last result, `silence` seconds ago) as lost, to be sent again;
+        a WorkerError once it has failed more often than there are workers and the round has
+        gone `quiet` (LOST_AFTER before any result) without a result: no worker is reachable.
+        mpi4py's pool keeps a dead rank among its idle ones, first in line after a live one's
+        task: a send to it fails again and again while the live ones are busy."""
+        name = type(executor).__name__
+        if times > max(workers, 1) and silence >= (LOST_AFTER if quiet is None else quiet):
+            raise WorkerError(
+                f"{name} could not send a task to any worker ({times} tries, no result for "
+                f"{silence:.1f} s; the last error: {type(error).__name__}: {error}): its workers "
+                "are lost. The work stops; a discovery's directory keeps its last complete "
+                "generation, which resume= continues (with a working executor)."
+            ) from error
+        self.resent += 1
+        if not self._told:
+            self._told = True
+            last_line = (str(error).strip().splitlines() or [""])[-1].strip()[:200]
+            print(
+                f"gpfd: {name} could not send a task to one of its workers ({last_line}): taken "
+                "as lost with its worker, and sent again (said once)",
+                file=sys.stderr,
+                flush=True,
+            )
 
     def _quiet(self, key: str) -> float | None:
         """How long a round of job `key` may go without a result before its tasks out that long
@@ -235,6 +303,7 @@ class Jobs:
         out: dict[int, list[Future]],
         sent_at: dict[Future, float],
         quiet: float,
+        unsent: dict[int, float],
         submit: Callable[[int, bool], None],
     ) -> float:
         """Sends again, job attached, each task whose copies have all been out `quiet` seconds
@@ -245,7 +314,9 @@ class Jobs:
         lost = [
             i
             for i, futures in out.items()
-            if futures and all(f.running() and now - sent_at[f] >= quiet for f in futures)
+            if futures
+            and i not in unsent
+            and all(f.running() and now - sent_at[f] >= quiet for f in futures)
         ]
         for i in lost:
             submit(i, True)

@@ -14,6 +14,10 @@ import os
 import shutil
 import subprocess
 import sys
+import threading
+import time
+from collections.abc import Iterator
+from concurrent.futures import Future, ThreadPoolExecutor
 from pathlib import Path
 from typing import Any
 
@@ -21,6 +25,8 @@ import pytest
 
 import gpfd
 from conftest import script_module
+from gpfd import _jobs
+from gpfd.workers import WorkerError
 from point_env import Point
 from test_executor_faults import DiesOnce, evolve
 from test_user_env_workers import SMALL, run_files
@@ -97,6 +103,110 @@ def mpi_library(tmp_path: Path) -> dict[str, str]:
     return env
 
 
+class SendFailed(RuntimeError):
+    """mpi4py.MPI.Exception as mpi4py's pool sets it on a task sent to a dead rank."""
+
+    __module__ = "mpi4py.test_double"
+
+
+class Losing(ThreadPoolExecutor):
+    """Two threads, whose worker dies with each submission numbered in `lost` (its future
+    running, never done: a dead rank's task in mpi4py's pool), that fails to send those in
+    `refused` (a dead rank still taken as idle), and has none left after `left` submissions (the
+    later ones queued, never started). Taken as losing tasks silently (its module's name)."""
+
+    __module__ = "mpi4py.test_double"  # gpfd._jobs.SILENT_LOSS names mpi4py's executors.
+
+    def __init__(self, lost: set[int], left: int | None = None, refused: Any = ()):
+        super().__init__(2)
+        self.lost, self.left, self.refused, self.count = lost, left, refused, 0
+        self.held: list[Future] = []
+
+    def submit(self, fn, /, *args, **kwargs) -> Future:
+        n, self.count = self.count, self.count + 1
+        if n in self.refused:
+            failed: Future = Future()
+            failed.set_running_or_notify_cancel()
+            failed.set_exception(SendFailed("MPIDI_UCX_send Endpoint timeout"))
+            return failed
+        if n in self.lost or (self.left is not None and n >= self.left):
+            future: Future = Future()
+            if n in self.lost:
+                future.set_running_or_notify_cancel()
+            self.held.append(future)
+            return future
+        return super().submit(fn, *args, **kwargs)
+
+
+def echo(config_text: str, value: int, delay: float = 0.01) -> tuple[str, int]:
+    time.sleep(delay)
+    return config_text, value
+
+
+def in_thread(results: Iterator) -> tuple[threading.Thread, list]:
+    """A daemon thread that collects `results` (a round may wait for ever: the test does not)."""
+    collected: list = []
+    thread = threading.Thread(target=lambda: collected.extend(results), daemon=True)
+    thread.start()
+    return thread, collected
+
+
+@pytest.fixture
+def quick_loss(monkeypatch):
+    """A task taken as lost after 0.2 s of silence; this process as a worker holding nothing."""
+    monkeypatch.setattr(_jobs, "LOST_AFTER", 0.2)
+    for cache in (_jobs._jobs, _jobs._envs, _jobs._registered):
+        cache.clear()
+    yield
+    for cache in (_jobs._jobs, _jobs._envs, _jobs._registered):
+        cache.clear()
+
+
+def test_a_task_lost_with_its_worker_is_sent_again_and_its_first_result_taken(quick_loss):
+    jobs = _jobs.Jobs("python:mpi-lost-a", Point)
+    with Losing(lost={1}) as executor:
+        thread, results = in_thread(jobs.map(executor, echo, "t", [(i,) for i in range(5)], 2))
+        thread.join(10)
+        assert results == [("t", i) for i in range(5)]
+        assert jobs.resent == 1 and executor.count == 6
+        assert executor.held[0].running()  # The lost copy, given up, not waited for.
+    with ThreadPoolExecutor(2) as executor:  # Never silent: a slow task is waited for.
+        work = [(0,), (1, 1.0)]  # 1 s: five times the silence that makes a task lost.
+        assert list(jobs.map(executor, echo, "u", work, 2)) == [("u", 0), ("u", 1)]
+        assert jobs.resent == 1
+
+
+def test_with_every_worker_lost_a_lost_task_has_one_copy_queued_and_the_round_waits(quick_loss):
+    jobs = _jobs.Jobs("python:mpi-lost-b", Point)
+    with Losing(lost={1}, left=4) as executor:
+        thread, results = in_thread(jobs.map(executor, echo, "t", [(i,) for i in range(4)], 2))
+        thread.join(2.0)  # Ten times the silence that makes a task lost.
+        assert thread.is_alive() and jobs.resent == 1 and executor.count == 5
+        queued = executor.held[1]  # The copy sent again: no worker took it.
+        assert not queued.running() and not queued.done()
+        queued.set_running_or_notify_cancel()
+        queued.set_result(("t", 1))  # A worker came back and played it.
+        thread.join(10)
+        assert results == [("t", i) for i in range(4)]
+
+
+def test_a_task_that_could_not_be_sent_to_a_dead_worker_is_sent_again(quick_loss, capfd):
+    jobs = _jobs.Jobs("python:mpi-lost-c", Point)
+    with Losing(lost=set(), refused={1, 4}) as executor:
+        thread, results = in_thread(jobs.map(executor, echo, "t", [(i,) for i in range(4)], 2))
+        thread.join(10)
+        assert results == [("t", i) for i in range(4)]
+        assert jobs.resent == 2 and executor.count == 6  # Task 1 failed twice.
+    assert capfd.readouterr().err.count("could not send a task") == 1  # Said once.
+
+
+def test_a_task_no_worker_can_be_sent_stops_the_round(quick_loss):
+    jobs = _jobs.Jobs("python:mpi-lost-d", Point)
+    stops = pytest.raises(WorkerError, match=r"could not send a task to any worker \(3 tries")
+    with Losing(lost=set(), refused=range(1, 1000)) as executor, stops:
+        list(jobs.map(executor, echo, "t", [(0,), (1,)], 2))
+
+
 def mpiexec_or_skip() -> str:
     pytest.importorskip("mpi4py")
     mpiexec = shutil.which("mpiexec")
@@ -105,14 +215,18 @@ def mpiexec_or_skip() -> str:
     return mpiexec
 
 
-def run_fault_script(tmp_path: Path, launch: list[str], name: str) -> subprocess.CompletedProcess:
+def run_fault_script(
+    tmp_path: Path, launch: list[str], name: str, dies: bool = True
+) -> subprocess.CompletedProcess:
     """FAULT_SCRIPT as ``LAUNCH python -m mpi4py.futures ...``, writing tmp_path/NAME (its flags
-    in NAME-flags)."""
+    in NAME-flags); no worker dies by itself unless `dies`."""
     env = mpi_library(tmp_path)
     script = tmp_path / "fault.py"
     script.write_text(FAULT_SCRIPT)
     flags = tmp_path / f"{name}-flags"
     flags.mkdir()
+    if not dies:
+        (flags / "died").touch()
     program = [sys.executable, "-m", "mpi4py.futures", str(script), str(tmp_path / name)]
     return subprocess.run(
         [*launch, *program, str(flags)],
@@ -187,18 +301,30 @@ def test_mpi4py_pool_across_namespaced_hosts_gives_threads_one(tmp_path):
 
 
 @pytest.mark.multihost
-def test_mpi4py_pool_across_namespaced_hosts_loses_no_evaluation_when_a_worker_dies(tmp_path):
+@pytest.mark.parametrize("fault", ["killed", "cut-off"])
+def test_mpi4py_pool_across_namespaced_hosts_loses_no_evaluation_when_a_worker_is_lost(
+    tmp_path, fault
+):
     """The driver on host 0, one worker on each of hosts 1 and 2 (scripts/multihost), under
-    ``-disable-auto-cleanup``: a worker killed mid-generation, the run as threads=1's."""
+    ``-disable-auto-cleanup``: a worker killed mid-generation (DiesOnce), or its host cut off in
+    generation 1 (scripts/multihost --fault link: the bridge port of rank 2's host down, 50 ms
+    into it); the run as threads=1's."""
     mpiexec_or_skip()
     why = script_module("multihost").usable()
     if why:
         pytest.skip(f"multihost: {why}")
     reference = run_files(evolve(tmp_path, "one", threads=1).dir)
     multihost = [sys.executable, str(HERE.parents[1] / "scripts" / "multihost"), "--hosts", "3"]
-    done = run_fault_script(tmp_path, [*multihost, "--", "-disable-auto-cleanup"], "mpi")
+    if fault == "cut-off":
+        multihost += ["--watch", str(tmp_path / "mpi"), "--fault", "link", "--fault-rank", "2"]
+        multihost += ["--fault-at-generation", "1"]
+    launch = [*multihost, "--", "-disable-auto-cleanup"]
+    done = run_fault_script(tmp_path, launch, "mpi", dies=fault == "killed")
     assert done.returncode == 0, done.stderr[-3000:]
-    print(done.stdout.strip().splitlines()[-1])  # The time and the bytes on the wire.
-    assert (tmp_path / "mpi-flags/died").exists()
+    print(done.stdout.strip().splitlines()[0])  # The time and the bytes on the wire.
+    if fault == "killed":
+        assert (tmp_path / "mpi-flags/died").exists()
+    else:
+        assert 'multihost: fault {"kind": "link", "rank": 2, "time"' in done.stdout
     assert LOST in done.stderr
     assert run_files(tmp_path / "mpi") == reference
