@@ -7,7 +7,9 @@ worker alone under its hydra proxy (its own host, or here its own host name with
 launcher), the other ranks go on, gpfd sends the lost task again (gpfd._jobs) and the run ends as
 threads=1's; the script ends the job with ``MPI_Abort(0)``, since mpi4py's shutdown would wait for
 the dead rank for ever. Without that flag hydra ends the whole job, and resume= continues the
-directory to the same run."""
+directory to the same run. gpfd's rule for such tasks (taken as lost after a silence, sent
+again; a send that failed, sent again; none possible, a WorkerError) is also tested in this
+process with a double of mpi4py's pool (Losing), without MPI."""
 
 import ctypes
 import os
