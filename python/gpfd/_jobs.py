@@ -13,6 +13,12 @@ carries only a job key, the genomes or feature sets and the seeds. Any
 - each worker keeps its last ``KEEP_JOBS`` jobs and ``KEEP_ENVS`` environments (least recently
   used first out); an environment is unpickled once per worker, whatever the number of jobs on it.
 
+An executor that loses a task silently when its worker is lost (mpi4py's ``MPIPoolExecutor``:
+the task's future never completes) gets its lost tasks sent again: once no result of a round has
+come for ``max(LOST_AFTER, LOST_FACTOR x`` the longest any task of its job took from submission
+to result``)``, each task of the round out that long, on a worker, is sent again (job attached);
+the first result of a task is the one taken, its other copies cancelled or ignored.
+
 A task's result depends on its job, genomes and seeds only, never on where it ran or how many
 times it was sent: the same seed gives the same run on any executor.
 """
@@ -21,7 +27,9 @@ from __future__ import annotations
 
 import hashlib
 import pickle
+import sys
 import threading
+import time
 from collections import OrderedDict
 from collections.abc import Callable, Iterator
 from concurrent.futures import FIRST_COMPLETED, Executor, Future, wait
@@ -30,9 +38,20 @@ from typing import Any
 import cloudpickle
 
 from gpfd import _core, user_env
+from gpfd.workers import WorkerError
 
 KEEP_JOBS = 16
 KEEP_ENVS = 4
+
+# Executors (by the module of their class) whose lost worker takes its task with it, silently.
+# mpi4py.futures' MPIPoolExecutor (4.1.2, _core.client_exec) waits for a rank's answer until it
+# comes: under `mpiexec -disable-auto-cleanup` a dead rank's task stays running for ever, and the
+# rank gets no other task (docs/cluster.md, "mpi4py under srun or mpiexec"). Dask, Ray and gpfd's
+# pool run such a task again themselves; the others break as a whole (gpfd.evaluator).
+SILENT_LOSS = ("mpi4py.",)
+LOST_AFTER = 5.0  # Seconds: the least silence after which a task is taken as lost.
+LOST_FACTOR = 3.0  # ... and at least this many times its job's slowest task.
+RESEND_PAUSE = 0.5  # Seconds before a task that could not be sent to a worker is sent again.
 
 
 class NeedJob:
@@ -96,6 +115,21 @@ def runs_group(config_text: str, budget: int, group: list[tuple[tuple, list[int]
 # ---- the driver's side ----
 
 
+def loses_tasks_silently(executor: Executor) -> bool:
+    """Whether a task of `executor` may never complete when its worker is lost (SILENT_LOSS)."""
+    return type(executor).__module__.startswith(SILENT_LOSS)
+
+
+def undelivered(error: BaseException) -> bool:
+    """Whether `error`, a task's, was raised by a silently losing executor's own machinery, the
+    task never reaching a worker: mpi4py's pool sets the MPI error of a send to a dead rank
+    (``Endpoint timeout`` once UCX has seen its connection close: docs/mpi.md, "Lost workers")
+    on the task's future. An error raised in a worker comes with the worker's traceback as its
+    cause (mpi4py's RemoteTraceback), and gpfd's tasks make no MPI call."""
+    remote = type(error.__cause__).__name__ == "RemoteTraceback"
+    return type(error).__module__.startswith(SILENT_LOSS) and not remote
+
+
 def _digest(*parts: bytes) -> str:
     hasher = hashlib.sha256()
     for part in parts:
@@ -121,7 +155,10 @@ class Jobs:
         self._jobs: dict[str, tuple[str, bytes]] = {}  # config text -> (key, payload)
         self._sent: set[str] = set()  # Keys sent at least once.
         self.payloads_sent = 0  # Tasks sent with their job attached (tests read it).
+        self.resent = 0  # Tasks sent again, taken as lost (tests read it).
         self.pending: set[Future] = set()  # The futures of the round under way.
+        self._slowest: dict[str, float] = {}  # Job key -> longest submission-to-result seconds.
+        self._told = False  # Whether a task that could not be sent was reported.
 
     def job(self, config_text: str) -> tuple[str, bytes]:
         """(key, payload) of the job of `config_text`."""
@@ -140,38 +177,158 @@ class Jobs:
     ) -> Iterator[Any]:
         """``function(config_text, *args)`` for each args of `work` on `executor`, results in
         order as each is done. A task's error is raised as soon as it comes; the tasks not yet
-        started are then cancelled (as they are when the iterator is dropped: Evaluator.close)."""
+        started are then cancelled (as they are when the iterator is dropped: Evaluator.close).
+        On an executor that loses tasks silently, a task taken as lost is sent again (above)."""
         key, payload = self.job(config_text)
         first = key not in self._sent
         self._sent.add(key)
         index: dict[Future, int] = {}
+        sent_at: dict[Future, float] = {}
+        out: dict[int, list[Future]] = {}  # Task -> its copies out.
+        silent = loses_tasks_silently(executor)
+        # Tasks whose copy could not be sent -> when: sent again at the next result, or after
+        # RESEND_PAUSE.
+        unsent: dict[int, float] = {}
+        failures: dict[int, int] = {}  # Task -> the sends that failed since the last result.
 
         def submit(i: int, attach: bool) -> None:
             future = executor.submit(run, key, payload if attach else None, function, *work[i])
             self.payloads_sent += attach
             index[future] = i
+            sent_at[future] = time.monotonic()
+            out.setdefault(i, []).append(future)
             self.pending.add(future)
 
+        def drop(future: Future) -> None:
+            self.pending.discard(future)
+            index.pop(future, None)
+            sent_at.pop(future, None)
+
         results: dict[int, Any] = {}
+        answered = last = time.monotonic()  # The round's start, then its last result ...
         try:
             for i in range(len(work)):
                 submit(i, first and i < copies)
             turn = 0
             while turn < len(work):
-                done, _ = wait(self.pending, return_when=FIRST_COMPLETED)
+                quiet = self._quiet(key) if silent else None
+                timeout = None if quiet is None else max(0.0, last + quiet - time.monotonic())
+                if unsent:
+                    due = max(0.0, min(unsent.values()) + RESEND_PAUSE - time.monotonic())
+                    timeout = due if timeout is None else min(timeout, due)
+                done, _ = wait(self.pending, timeout=timeout, return_when=FIRST_COMPLETED)
+                if quiet is not None and time.monotonic() - last >= quiet:
+                    # ... or, for the silence that makes a task lost, the last sent again.
+                    last = self._send_lost(executor, out, sent_at, quiet, unsent, submit)
                 for future in done:
-                    self.pending.discard(future)
-                    i = index.pop(future)
-                    value = future.result()
+                    if future not in index:  # Dropped: a copy of a task already answered.
+                        continue
+                    i, began = index[future], sent_at[future]
+                    drop(future)
+                    out[i].remove(future)
+                    try:
+                        value = future.result()
+                    except Exception as e:
+                        if not (silent and undelivered(e)):
+                            raise
+                        failures[i] = failures.get(i, 0) + 1
+                        silence = time.monotonic() - answered
+                        self._unsent(executor, e, failures[i], copies, silence, quiet)
+                        unsent[i] = time.monotonic()
+                        continue
                     if isinstance(value, NeedJob):
                         submit(i, True)
-                    else:
-                        results[i] = value
+                        continue
+                    results[i] = value
+                    answered = last = time.monotonic()
+                    failures.clear()
+                    self._slowest[key] = max(self._slowest.get(key, 0.0), last - began)
+                    for other in out.pop(i):  # Copies sent again, or the one taken as lost.
+                        other.cancel()
+                        drop(other)
+                now = time.monotonic()
+                for i, when in sorted(unsent.items()):
+                    if answered >= when or now >= when + RESEND_PAUSE:
+                        del unsent[i]
+                        submit(i, True)
                 while turn in results:
                     yield results.pop(turn)
                     turn += 1
         finally:
             self.cancel()
+
+    def _unsent(
+        self,
+        executor: Executor,
+        error: Exception,
+        times: int,
+        workers: int,
+        silence: float,
+        quiet: float | None,
+    ) -> None:
+        """Takes a task that `executor` could not send to a worker (`error`, its `times`-th
+        failure since the round's last result, `silence` seconds ago) as lost, to be sent again;
+        a WorkerError once it has failed more often than there are workers and the round has
+        gone `quiet` (LOST_AFTER before any result) without a result: no worker is reachable.
+        mpi4py's pool keeps a dead rank among its idle ones, first in line after a live one's
+        task: a send to it fails again and again while the live ones are busy."""
+        name = type(executor).__name__
+        if times > max(workers, 1) and silence >= (LOST_AFTER if quiet is None else quiet):
+            raise WorkerError(
+                f"{name} could not send a task to any worker ({times} tries, no result for "
+                f"{silence:.1f} s; the last error: {type(error).__name__}: {error}): its workers "
+                "are lost. The work stops; a discovery's directory keeps its last complete "
+                "generation, which resume= continues (with a working executor)."
+            ) from error
+        self.resent += 1
+        if not self._told:
+            self._told = True
+            last_line = (str(error).strip().splitlines() or [""])[-1].strip()[:200]
+            print(
+                f"gpfd: {name} could not send a task to one of its workers ({last_line}): taken "
+                "as lost with its worker, and sent again (said once)",
+                file=sys.stderr,
+                flush=True,
+            )
+
+    def _quiet(self, key: str) -> float | None:
+        """How long a round of job `key` may go without a result before its tasks out that long
+        are taken as lost; None before any task has come back (nothing to measure against)."""
+        slowest = self._slowest.get(key, max(self._slowest.values(), default=None))
+        return None if slowest is None else max(LOST_AFTER, LOST_FACTOR * slowest)
+
+    def _send_lost(
+        self,
+        executor: Executor,
+        out: dict[int, list[Future]],
+        sent_at: dict[Future, float],
+        quiet: float,
+        unsent: dict[int, float],
+        submit: Callable[[int, bool], None],
+    ) -> float:
+        """Sends again, job attached, each task whose copies have all been out `quiet` seconds
+        and handed to a worker (running), none answering; returns the time it did (the silence
+        counts again from then). A copy still queued waits for a worker: none is added to it, so
+        with every worker lost the round waits, one copy of each lost task queued."""
+        now = time.monotonic()
+        lost = [
+            i
+            for i, futures in out.items()
+            if futures
+            and i not in unsent
+            and all(f.running() and now - sent_at[f] >= quiet for f in futures)
+        ]
+        for i in lost:
+            submit(i, True)
+        self.resent += len(lost)
+        if lost:
+            print(
+                f"gpfd: no result from {type(executor).__name__} for {quiet:.1f} s: {len(lost)} "
+                "task(s) out that long taken as lost with their worker(s), and sent again",
+                file=sys.stderr,
+                flush=True,
+            )
+        return now
 
     def cancel(self) -> None:
         """Cancels the tasks of the round under way that have not started."""

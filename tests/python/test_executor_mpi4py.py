@@ -1,21 +1,36 @@
 """gpfd.evolve(executor=MPIPoolExecutor()) under ``mpiexec -n 3 python -m mpi4py.futures``: the
 same run as threads=1, on this machine and across hosts made of network namespaces (marked
 multihost: root only, ``pytest -m multihost``); skipped where mpi4py or mpiexec is missing.
-A worker lost under mpi4py's pool ends the whole MPI job (seen with MPICH 4.0: hydra kills every
-rank); the directory keeps its last complete generation for resume=. Not tested here."""
+
+A worker killed mid-generation (DiesOnce): under ``mpiexec -disable-auto-cleanup`` with each
+worker alone under its hydra proxy (its own host, or here its own host name with the fork
+launcher), the other ranks go on, gpfd sends the lost task again (gpfd._jobs) and the run ends as
+threads=1's; the script ends the job with ``MPI_Abort(0)``, since mpi4py's shutdown would wait for
+the dead rank for ever. Without that flag hydra ends the whole job, and resume= continues the
+directory to the same run. gpfd's rule for such tasks (taken as lost after a silence, sent
+again; a send that failed, sent again; none possible, a WorkerError) is also tested in this
+process with a double of mpi4py's pool (Losing), without MPI."""
 
 import ctypes
 import os
 import shutil
 import subprocess
 import sys
+import threading
+import time
+from collections.abc import Iterator
+from concurrent.futures import Future, ThreadPoolExecutor
 from pathlib import Path
 from typing import Any
 
 import pytest
 
 import gpfd
+from conftest import script_module
+from gpfd import _jobs
+from gpfd.workers import WorkerError
 from point_env import Point
+from test_executor_faults import DiesOnce, evolve
 from test_user_env_workers import SMALL, run_files
 
 HERE = Path(__file__).resolve().parent
@@ -31,6 +46,37 @@ if __name__ == "__main__":
     with MPIPoolExecutor() as executor:
         gpfd.evolve(env=Point, **{COMMON!r}, executor=executor, out=sys.argv[1], verbose=False)
 """
+
+# The worker that steps first once generation 0 is done dies (DiesOnce). The job then ends with
+# MPI_Abort: with a rank lost, mpi4py's shutdown (the end of ``python -m mpi4py.futures``) would
+# wait for it for ever; the exit code is hydra's, that of the abort (0 when evolve returned).
+FAULT_SCRIPT = """
+import os, sys, traceback
+from pathlib import Path
+from mpi4py import MPI
+from mpi4py.futures import MPIPoolExecutor
+import gpfd
+from test_executor_faults import COMMON, DiesOnce, arm_after_generation_0
+
+if __name__ == "__main__":
+    out, flags = sys.argv[1:3]
+    code = 1
+    try:
+        gpfd.evolve(env=DiesOnce, env_kwargs={"directory": flags, "parent": os.getpid()},
+                    **COMMON, executor=MPIPoolExecutor(),
+                    callback=arm_after_generation_0(Path(flags)), out=out, verbose=False)
+        code = 0
+    except BaseException:
+        traceback.print_exc()
+    sys.stdout.flush()
+    sys.stderr.flush()
+    MPI.COMM_WORLD.Abort(code)
+"""
+# One host, one hydra proxy per rank: three names of this machine, proxies started by fork. A
+# proxy ends the other ranks under it when one dies (docs/mpi.md, "Lost workers"), so a rank
+# alone under its own is the unit that can be lost.
+EACH_RANK_ITS_PROXY = ["-launcher", "fork", "-hosts", "127.0.0.1,127.0.0.2,127.0.0.3"]
+LOST = "taken as lost with their worker(s), and sent again"
 
 
 def loaded(name: str) -> str:
@@ -59,11 +105,142 @@ def mpi_library(tmp_path: Path) -> dict[str, str]:
     return env
 
 
-def test_mpi4py_pool_gives_threads_one(tmp_path):
+class SendFailed(RuntimeError):
+    """mpi4py.MPI.Exception as mpi4py's pool sets it on a task sent to a dead rank."""
+
+    __module__ = "mpi4py.test_double"
+
+
+class Losing(ThreadPoolExecutor):
+    """Two threads, whose worker dies with each submission numbered in `lost` (its future
+    running, never done: a dead rank's task in mpi4py's pool), that fails to send those in
+    `refused` (a dead rank still taken as idle), and has none left after `left` submissions (the
+    later ones queued, never started). Taken as losing tasks silently (its module's name)."""
+
+    __module__ = "mpi4py.test_double"  # gpfd._jobs.SILENT_LOSS names mpi4py's executors.
+
+    def __init__(self, lost: set[int], left: int | None = None, refused: Any = ()):
+        super().__init__(2)
+        self.lost, self.left, self.refused, self.count = lost, left, refused, 0
+        self.held: list[Future] = []
+
+    def submit(self, fn, /, *args, **kwargs) -> Future:
+        n, self.count = self.count, self.count + 1
+        if n in self.refused:
+            failed: Future = Future()
+            failed.set_running_or_notify_cancel()
+            failed.set_exception(SendFailed("MPIDI_UCX_send Endpoint timeout"))
+            return failed
+        if n in self.lost or (self.left is not None and n >= self.left):
+            future: Future = Future()
+            if n in self.lost:
+                future.set_running_or_notify_cancel()
+            self.held.append(future)
+            return future
+        return super().submit(fn, *args, **kwargs)
+
+
+def echo(config_text: str, value: int, delay: float = 0.01) -> tuple[str, int]:
+    time.sleep(delay)
+    return config_text, value
+
+
+def in_thread(results: Iterator) -> tuple[threading.Thread, list]:
+    """A daemon thread that collects `results` (a round may wait for ever: the test does not)."""
+    collected: list = []
+    thread = threading.Thread(target=lambda: collected.extend(results), daemon=True)
+    thread.start()
+    return thread, collected
+
+
+@pytest.fixture
+def quick_loss(monkeypatch):
+    """A task taken as lost after 0.2 s of silence; this process as a worker holding nothing."""
+    monkeypatch.setattr(_jobs, "LOST_AFTER", 0.2)
+    for cache in (_jobs._jobs, _jobs._envs, _jobs._registered):
+        cache.clear()
+    yield
+    for cache in (_jobs._jobs, _jobs._envs, _jobs._registered):
+        cache.clear()
+
+
+def test_a_task_lost_with_its_worker_is_sent_again_and_its_first_result_taken(quick_loss):
+    jobs = _jobs.Jobs("python:mpi-lost-a", Point)
+    with Losing(lost={1}) as executor:
+        thread, results = in_thread(jobs.map(executor, echo, "t", [(i,) for i in range(5)], 2))
+        thread.join(10)
+        assert results == [("t", i) for i in range(5)]
+        assert jobs.resent == 1 and executor.count == 6
+        assert executor.held[0].running()  # The lost copy, given up, not waited for.
+    with ThreadPoolExecutor(2) as executor:  # Never silent: a slow task is waited for.
+        work = [(0,), (1, 1.0)]  # 1 s: five times the silence that makes a task lost.
+        assert list(jobs.map(executor, echo, "u", work, 2)) == [("u", 0), ("u", 1)]
+        assert jobs.resent == 1
+
+
+def test_with_every_worker_lost_a_lost_task_has_one_copy_queued_and_the_round_waits(quick_loss):
+    jobs = _jobs.Jobs("python:mpi-lost-b", Point)
+    with Losing(lost={1}, left=4) as executor:
+        thread, results = in_thread(jobs.map(executor, echo, "t", [(i,) for i in range(4)], 2))
+        thread.join(2.0)  # Ten times the silence that makes a task lost.
+        assert thread.is_alive() and jobs.resent == 1 and executor.count == 5
+        queued = executor.held[1]  # The copy sent again: no worker took it.
+        assert not queued.running() and not queued.done()
+        queued.set_running_or_notify_cancel()
+        queued.set_result(("t", 1))  # A worker came back and played it.
+        thread.join(10)
+        assert results == [("t", i) for i in range(4)]
+
+
+def test_a_task_that_could_not_be_sent_to_a_dead_worker_is_sent_again(quick_loss, capfd):
+    jobs = _jobs.Jobs("python:mpi-lost-c", Point)
+    with Losing(lost=set(), refused={1, 4}) as executor:
+        thread, results = in_thread(jobs.map(executor, echo, "t", [(i,) for i in range(4)], 2))
+        thread.join(10)
+        assert results == [("t", i) for i in range(4)]
+        assert jobs.resent == 2 and executor.count == 6  # Task 1 failed twice.
+    assert capfd.readouterr().err.count("could not send a task") == 1  # Said once.
+
+
+def test_a_task_no_worker_can_be_sent_stops_the_round(quick_loss):
+    jobs = _jobs.Jobs("python:mpi-lost-d", Point)
+    stops = pytest.raises(WorkerError, match=r"could not send a task to any worker \(3 tries")
+    with Losing(lost=set(), refused=range(1, 1000)) as executor, stops:
+        list(jobs.map(executor, echo, "t", [(0,), (1,)], 2))
+
+
+def mpiexec_or_skip() -> str:
     pytest.importorskip("mpi4py")
     mpiexec = shutil.which("mpiexec")
     if mpiexec is None:
         pytest.skip("no mpiexec")
+    return mpiexec
+
+
+def run_fault_script(
+    tmp_path: Path, launch: list[str], name: str, dies: bool = True
+) -> subprocess.CompletedProcess:
+    """FAULT_SCRIPT as ``LAUNCH python -m mpi4py.futures ...``, writing tmp_path/NAME (its flags
+    in NAME-flags); no worker dies by itself unless `dies`."""
+    env = mpi_library(tmp_path)
+    script = tmp_path / "fault.py"
+    script.write_text(FAULT_SCRIPT)
+    flags = tmp_path / f"{name}-flags"
+    flags.mkdir()
+    if not dies:
+        (flags / "died").touch()
+    program = [sys.executable, "-m", "mpi4py.futures", str(script), str(tmp_path / name)]
+    return subprocess.run(
+        [*launch, *program, str(flags)],
+        env=env,
+        timeout=300,
+        capture_output=True,
+        text=True,
+    )
+
+
+def test_mpi4py_pool_gives_threads_one(tmp_path):
+    mpiexec = mpiexec_or_skip()
     env = mpi_library(tmp_path)
     script = tmp_path / "run.py"
     script.write_text(SCRIPT)
@@ -76,13 +253,39 @@ def test_mpi4py_pool_gives_threads_one(tmp_path):
     assert run_files(tmp_path / "mpi") == run_files(one.dir)
 
 
+def test_mpi4py_pool_loses_no_evaluation_when_a_worker_dies(tmp_path):
+    reference = run_files(evolve(tmp_path, "one", threads=1).dir)
+    mpiexec = [mpiexec_or_skip(), "-disable-auto-cleanup", *EACH_RANK_ITS_PROXY, "-n", "3"]
+    done = run_fault_script(tmp_path, mpiexec, "mpi")
+    assert done.returncode == 0, done.stderr[-3000:]
+    assert (tmp_path / "mpi-flags/died").exists()  # A worker died mid-generation,
+    assert LOST in done.stderr  # and its task was sent again.
+    assert run_files(tmp_path / "mpi") == reference
+
+
+def test_mpi4py_job_ended_by_a_dead_worker_resumes_to_the_same_run(tmp_path):
+    """Without -disable-auto-cleanup hydra ends every rank when one dies: the directory keeps its
+    last complete generation, which resume= continues (here on threads) to the same run."""
+    reference = run_files(evolve(tmp_path, "one", threads=1).dir)
+    done = run_fault_script(tmp_path, [mpiexec_or_skip(), "-n", "3"], "mpi")
+    assert done.returncode != 0
+    assert (tmp_path / "mpi-flags/died").exists()
+    assert not (tmp_path / "mpi/validation.csv").exists()  # The run stopped in its generations.
+    run = gpfd.evolve(
+        resume=tmp_path / "mpi",
+        env=DiesOnce,
+        env_kwargs={"directory": str(tmp_path / "mpi-flags"), "parent": os.getpid()},
+        threads=2,
+        verbose=False,
+    )
+    assert run.finished and run_files(run.dir) == reference
+
+
 @pytest.mark.multihost
 def test_mpi4py_pool_across_namespaced_hosts_gives_threads_one(tmp_path):
     """The same under scripts/multihost: three hosts made of network namespaces, the driver on
     host 0, one worker on each other, every message over the bridge (root only)."""
-    pytest.importorskip("mpi4py")
-    if shutil.which("mpiexec") is None:
-        pytest.skip("no mpiexec")
+    mpiexec_or_skip()
     env = mpi_library(tmp_path)
     script = tmp_path / "run.py"
     script.write_text(SCRIPT)
@@ -97,3 +300,33 @@ def test_mpi4py_pool_across_namespaced_hosts_gives_threads_one(tmp_path):
     print(done.stdout.strip().splitlines()[-1])  # The time and the bytes on the wire.
     one = gpfd.evolve(env=Point, **COMMON, threads=1, out=tmp_path / "one", verbose=False)
     assert run_files(tmp_path / "mpi") == run_files(one.dir)
+
+
+@pytest.mark.multihost
+@pytest.mark.parametrize("fault", ["killed", "cut-off"])
+def test_mpi4py_pool_across_namespaced_hosts_loses_no_evaluation_when_a_worker_is_lost(
+    tmp_path, fault
+):
+    """The driver on host 0, one worker on each of hosts 1 and 2 (scripts/multihost), under
+    ``-disable-auto-cleanup``: a worker killed mid-generation (DiesOnce), or its host cut off in
+    generation 1 (scripts/multihost --fault link: the bridge port of rank 2's host down, 50 ms
+    into it); the run as threads=1's."""
+    mpiexec_or_skip()
+    why = script_module("multihost").usable()
+    if why:
+        pytest.skip(f"multihost: {why}")
+    reference = run_files(evolve(tmp_path, "one", threads=1).dir)
+    multihost = [sys.executable, str(HERE.parents[1] / "scripts" / "multihost"), "--hosts", "3"]
+    if fault == "cut-off":
+        multihost += ["--watch", str(tmp_path / "mpi"), "--fault", "link", "--fault-rank", "2"]
+        multihost += ["--fault-at-generation", "1"]
+    launch = [*multihost, "--", "-disable-auto-cleanup"]
+    done = run_fault_script(tmp_path, launch, "mpi", dies=fault == "killed")
+    assert done.returncode == 0, done.stderr[-3000:]
+    print(done.stdout.strip().splitlines()[0])  # The time and the bytes on the wire.
+    if fault == "killed":
+        assert (tmp_path / "mpi-flags/died").exists()
+    else:
+        assert 'multihost: fault {"kind": "link", "rank": 2, "time"' in done.stdout
+    assert LOST in done.stderr
+    assert run_files(tmp_path / "mpi") == reference
