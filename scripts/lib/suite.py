@@ -42,7 +42,7 @@ def parse_set(values, program):
 
 def run_task(env, args, settings, dest, work):
     """gpfd.evolve(env=env, runs=args.runs) into work, verbose; copies log.txt, runs.csv and each
-    run's KEPT files into dest. Returns (runs.csv's rows, the summary's common fields)."""
+    run's KEPT files into dest, with wall.txt. Returns read_task(dest)."""
     log = io.StringIO()
     start = time.monotonic()
     with contextlib.redirect_stdout(Tee(sys.stdout, log)):
@@ -59,6 +59,7 @@ def run_task(env, args, settings, dest, work):
     wall = time.monotonic() - start
     dest.mkdir(parents=True, exist_ok=True)
     (dest / "log.txt").write_text(log.getvalue())
+    (dest / "wall.txt").write_text(f"{wall:.1f}\n")
     shutil.copy(work / "runs.csv", dest / "runs.csv")
     for r in range(1, args.runs + 1):
         name = f"run-{r:02d}"
@@ -66,10 +67,18 @@ def run_task(env, args, settings, dest, work):
         for file in KEPT:
             if (work / name / file).is_file():
                 shutil.copy(work / name / file, dest / name / file)
+    return read_task(dest)
+
+
+def read_task(dest):
+    """(runs.csv's rows, the summary's common fields) of a task's kept files in dest: runs.csv,
+    log.txt (gpfd's verdict line), wall.txt (absent: no wall time)."""
     with open(dest / "runs.csv", newline="") as f:
         runs = list(csv.DictReader(f))
-    verdict = [line for line in log.getvalue().splitlines() if re.match(r"\d+ runs: ", line)]
+    log = (dest / "log.txt").read_text()
+    verdict = [line for line in log.splitlines() if re.match(r"\d+ runs: ", line)]
     p = re.search(r"Wilcoxon signed-rank over runs p = (\S+)\)", verdict[0]) if verdict else None
+    wall = dest / "wall.txt"
     return runs, {
         "runs": len(runs),
         "discovered": sum(r["returned"] == "discovered" for r in runs),
@@ -77,7 +86,7 @@ def run_task(env, args, settings, dest, work):
         "mean_original": mean(runs, "original_mean"),
         "mean_no_learning": mean(runs, "no_learning_mean"),
         "mean_reported": mean(runs, "reported_mean"),
-        "wall_s": f"{wall:.1f}",
+        "wall_s": wall.read_text().strip() if wall.is_file() else "",
         "verdict": verdict[0] if verdict else "(no verdict printed)",
     }
 
