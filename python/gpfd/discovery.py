@@ -208,6 +208,16 @@ class _InterruptWatch:
             signal.signal(signal.SIGINT, self._previous)
 
 
+def _as_argument(error: InputError, key: str) -> InputError:
+    """`error` naming the keyword argument `key=` where it names the command line's spelling of
+    it (``(--set key)``, ``(key (--key))``): a Python caller gave no option."""
+    text = str(error)
+    for spelling in (f"(--set {key})", f"({key} (--{key.replace('_', '-')}))"):
+        if text.endswith(spelling):
+            return InputError(text[: -len(spelling)] + f"({key}=)")
+    return error
+
+
 def evolve(
     config: str | os.PathLike | None = None,
     *,
@@ -323,6 +333,10 @@ def evolve(
                 _resume_call(env, env_kwargs),
                 lambda: watch.seen,
             )
+        except InputError as e:
+            if time_budget is None:
+                raise
+            raise _as_argument(e, "time_budget") from None
         finally:
             if evaluator is not None:
                 evaluator.close()

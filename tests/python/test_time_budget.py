@@ -29,3 +29,12 @@ def test_a_budget_writes_the_sizes_it_chose(tmp_path):
 def test_a_bad_budget_is_an_input_error(tmp_path, budget):
     with pytest.raises(gpfd.InputError, match="time_budget"):
         gpfd.evolve("cartpole-quick", time_budget=budget, out=tmp_path / "run")
+
+
+@pytest.mark.parametrize("budget", ["abc", 0.01])
+def test_a_budget_error_names_the_argument_not_the_command_line(tmp_path, budget):
+    """A bad budget, and one too short for the runs asked for, name time_budget=, the argument the
+    caller gave, where the command line's error names its option."""
+    with pytest.raises(gpfd.InputError, match=r"\(time_budget=\)$") as refused:
+        gpfd.evolve("cartpole-quick", time_budget=budget, runs=2, out=tmp_path / "run")
+    assert "--" not in str(refused.value)
