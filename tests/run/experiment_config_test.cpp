@@ -135,7 +135,9 @@ TEST(ExperimentConfig, TheNameIsADirectoryNameInsideResults) {
 
 TEST(ExperimentConfig, AnUnknownKeyGetsASuggestionOrTheKnownKeys) {
   for (const auto& why : {refusal("[gp]\nnope = 1\n"), refusal("", {"gp.nope=1"})}) {
-    EXPECT_TRUE(has(why, "unknown key 'gp.nope' (known: distinct_offspring, elitism, generations, ")) << why;
+    EXPECT_TRUE(
+        has(why, "unknown key 'gp.nope' (known: distinct_offspring, elitism, generations, "))
+        << why;
   }
   for (const auto& why : {refusal("[gp]\npopulaton = 1\n"), refusal("", {"gp.populaton=1"})}) {
     EXPECT_TRUE(has(why, "(did you mean 'population'?)")) << why;
