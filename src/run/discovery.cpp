@@ -328,7 +328,9 @@ std::unique_ptr<Discovery> Discovery::resume(const DiscoveryOptions& options,
       throw InputError("no run to resume (neither checkpoint.json nor config.toml)",
                        options.outDir);
     }
-    const std::string text = readFile(configPath);
+    // In today's form: keys added since the run was written read as their defaults.
+    const std::string text =
+        formatExperimentConfig(parseExperimentConfig(readFile(configPath), configPath));
     if (expected && formatExperimentConfig(*expected) != text) {
       throw InputError(
           "the config differs from the one the run was started with (see " + configPath + ")",
@@ -347,14 +349,17 @@ std::unique_ptr<Discovery> Discovery::resume(const DiscoveryOptions& options,
         checkpointPath);
   }
   ExperimentConfig config = parseExperimentConfig(checkpoint.config, checkpointPath + " (config)");
-  if (expected && formatExperimentConfig(*expected) != checkpoint.config) {
+  // The stored config in today's form: keys added since the run was written read as their
+  // defaults, so that a run of an earlier gpfd resumes (and its MPI workers read the text back).
+  const std::string stored = formatExperimentConfig(config);
+  if (expected && formatExperimentConfig(*expected) != stored) {
     throw InputError("the config differs from the one the run was started with (see " +
                          options.outDir + "/config.toml)",
                      options.outDir);
   }
   if (generations) config.gp.generations = *generations;
   auto state = std::make_unique<State>(config, options);
-  state->configText = checkpoint.config;  // The run keeps its identity when extended.
+  state->configText = stored;  // The run keeps its identity when extended.
   state->evolution.restore(checkpoint.state);
   state->cache.setEntries(std::move(checkpoint.cache));
   state->history = std::move(checkpoint.history);
