@@ -80,15 +80,23 @@ def train_and_evaluate(
     with_original: bool = False,
 ) -> float:
     """PPO trained for `timesteps` steps; the mean return of `episodes` evaluation episodes."""
-    seen = {"features": features, "with_original": with_original, "env_kwargs": TASK}
-    venv: VecEnv = VecMonitor(gpfd.sb3.make_vec_env("gpfd/CartPole-v0", N_ENVS, seed=seed, **seen))
+
+    def make(env_seed: int) -> VecEnv:
+        return gpfd.sb3.make_vec_env(
+            "gpfd/CartPole-v0",
+            N_ENVS,
+            seed=env_seed,
+            features=features,
+            with_original=with_original,
+            env_kwargs=TASK,
+        )
+
+    venv: VecEnv = VecMonitor(make(seed))
     if normalise:
         venv = VecNormalize(venv, norm_reward=False)
     model = PPO("MlpPolicy", venv, seed=seed, device="cpu", verbose=0, **PPO_PARAMS)
     model.learn(total_timesteps=timesteps)
-    evaluation: VecEnv = gpfd.sb3.make_vec_env(
-        "gpfd/CartPole-v0", N_ENVS, seed=10_000 + seed, **seen
-    )
+    evaluation: VecEnv = make(10_000 + seed)
     if isinstance(venv, VecNormalize):  # The statistics learnt in training, frozen.
         evaluation = VecNormalize(evaluation, training=False, norm_reward=False)
         evaluation.obs_rms = venv.obs_rms
