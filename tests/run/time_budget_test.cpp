@@ -129,40 +129,37 @@ TEST(TimeBudget, SizesGivenReplaceTheConfigsBudget) {
   EXPECT_FALSE(sized("sizes-flag", {"gp.population=6"}, 1).contains("time_budget"));
 }
 
-TEST(TimeBudget, ABudgetTooShortForTheSmallestRunIsRefused) {
+// The InputError gpfd evolve gives cartpole-quick with `budget` for `runs` runs ("" if none).
+InputError budgetRefusal(const std::string& budget, int runs, const std::string& dir) {
   service::EvolveRequest request;
   request.config = "cartpole-quick";
-  request.overrides = {"time_budget=0.05"};
-  request.out = {freshDir("budget-short"), false, "--out"};
+  request.overrides = {"time_budget=" + budget};
+  if (runs > 1) request.runs = runs;
+  request.out = {freshDir(dir), false, "--out"};
   service::EvolveProgress quiet;
   const std::atomic<bool> stop{false};
   try {
     service::evolve(request, quiet, stop);
-    FAIL() << "a 0.05 s budget was accepted";
   } catch (const InputError& e) {
-    EXPECT_EQ(e.where(), "time_budget (--time-budget)");
-    EXPECT_NE(std::string(e.what()).find("is too short here: the smallest run"), std::string::npos)
-        << e.what();
-    EXPECT_NE(std::string(e.what()).find("give at least"), std::string::npos) << e.what();
+    return e;
   }
+  return InputError("", "");
+}
+
+TEST(TimeBudget, ABudgetTooShortForTheSmallestRunIsRefused) {
+  const auto e = budgetRefusal("0.05", 1, "budget-short");
+  const std::string what = e.what();
+  ASSERT_FALSE(what.empty()) << "a 0.05 s budget was accepted";
+  EXPECT_EQ(e.where(), "time_budget (--time-budget)");
+  EXPECT_NE(what.find("is too short here: the smallest run"), std::string::npos) << what;
+  EXPECT_NE(what.find("give at least"), std::string::npos) << what;
 }
 
 TEST(TimeBudget, ABudgetTooShortForItsRunsNamesTheWholeBudget) {
-  service::EvolveRequest request;
-  request.config = "cartpole-quick";
-  request.overrides = {"time_budget=0.5"};
-  request.runs = 4;
-  request.out = {freshDir("budget-short-runs"), false, "--out"};
-  service::EvolveProgress quiet;
-  const std::atomic<bool> stop{false};
-  try {
-    service::evolve(request, quiet, stop);
-    FAIL() << "a 0.5 s budget for 4 runs was accepted";
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("for 4 runs is too short here"), std::string::npos) << what;
-    EXPECT_NE(what.find("fewer runs"), std::string::npos) << what;
-  }
+  const std::string what = budgetRefusal("0.5", 4, "budget-short-runs").what();
+  ASSERT_FALSE(what.empty()) << "a 0.5 s budget for 4 runs was accepted";
+  EXPECT_NE(what.find("for 4 runs is too short here"), std::string::npos) << what;
+  EXPECT_NE(what.find("fewer runs"), std::string::npos) << what;
 }
 
 TEST(TimeBudget, TheKeyReadsSecondsOrTextAndBadValuesNameIt) {
