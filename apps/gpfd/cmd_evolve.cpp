@@ -83,6 +83,14 @@ int evolve(const EvolveOptions& o) {
     release.emplace(*session, timeout);
     request.processes = session->size();
     request.makeEvaluator = [session, timeout](const run::EvaluatorSetup& setup) {
+      // The workers hold one config at a time (mpi/protocol.hpp): no second evaluator beside
+      // the first.
+      if (setup.rung > 0) {
+        throw InputError(
+            "fitness.promote (successive halving) is not available under MPI yet: run it on "
+            "threads, or from Python with an executor",
+            "fitness.promote");
+      }
       return std::make_unique<mpi::MpiEvaluator>(
           *session, setup.configText, kVersion,
           mpi::MpiEvaluatorOptions{

@@ -16,6 +16,8 @@
 namespace gpfd::gp {
 namespace {
 
+constexpr double kWorst = -std::numeric_limits<double>::infinity();
+
 double nowSeconds() {
   using namespace std::chrono;
   return duration<double>(steady_clock::now().time_since_epoch()).count();
@@ -36,6 +38,13 @@ std::vector<double> probabilities(const GpConfig& c, const std::vector<OperatorI
 }
 
 }  // namespace
+
+bool ranksAbove(const Individual& a, const Individual& b) {
+  const bool finiteA = std::isfinite(a.fitness), finiteB = std::isfinite(b.fitness);
+  if (finiteA != finiteB) return finiteA;
+  if (a.rung != b.rung) return a.rung > b.rung;
+  return a.fitness > b.fitness;
+}
 
 void validate(const GpConfig& c) {
   require(c.population >= 2, "population", "at least 2");
@@ -63,6 +72,9 @@ void validate(const GpConfig& c) {
   require(c.tournamentSize >= 1, "tournament_size", "at least 1");
   require(c.sizePenalty >= 0 && std::isfinite(c.sizePenalty), "size_penalty",
           "finite and non-negative");
+  if (!(c.promote >= 0 && c.promote < 1)) {
+    throw InputError("fitness.promote must be in [0, 1)", "fitness.promote");
+  }
 }
 
 std::vector<double> operatorProbabilities(const GpConfig& c) {
@@ -80,12 +92,13 @@ double crossoverProbability(const GpConfig& c) {
 }
 
 Evolution::Evolution(GpConfig config, SearchSpace space, Evaluator& evaluator, GenomeReducer reduce,
-                     GenomeFilter admissible)
+                     GenomeFilter admissible, std::vector<Evaluator*> rungs)
     : config_(config),
       space_(std::move(space)),
       evaluator_(evaluator),
       reduce_(std::move(reduce)),
       admissible_(std::move(admissible)),
+      rungs_(std::move(rungs)),
       rng_(deriveSeed(config.seed, kVariationStream)) {
   validate(config_);
   operators_ = OperatorRegistry::global().operators();
@@ -115,7 +128,7 @@ GenerationStats Evolution::step() {
   std::vector<std::size_t> order(population_.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return population_[a].fitness > population_[b].fitness;
+    return ranksAbove(population_[a], population_[b]);
   });
   const auto elites = static_cast<std::size_t>(
       std::lround(config_.elitism * static_cast<double>(config_.population)));
@@ -159,14 +172,14 @@ void Evolution::restore(const EvolutionState& state) {
 const Individual& Evolution::best() const {
   return *std::max_element(
       population_.begin(), population_.end(),
-      [](const Individual& a, const Individual& b) { return a.fitness < b.fitness; });
+      [](const Individual& a, const Individual& b) { return ranksAbove(b, a); });
 }
 
 const Individual& Evolution::tournament() {
   const Individual* winner = nullptr;
   for (int t = 0; t < config_.tournamentSize; ++t) {
     const Individual& candidate = population_[rng_.below(population_.size())];
-    if (winner == nullptr || candidate.fitness > winner->fitness) winner = &candidate;
+    if (winner == nullptr || ranksAbove(candidate, *winner)) winner = &candidate;
   }
   return *winner;
 }
@@ -238,6 +251,47 @@ expr::Genome Evolution::reduced(expr::Genome genome) const {
   return reduce_ ? reduce_(genome) : genome;
 }
 
+void Evolution::setFitness(Individual& ind, double raw, int rung) const {
+  ind.rung = rung;
+  ind.rawFitness = std::isfinite(raw) ? raw : kWorst;
+  ind.fitness = std::isfinite(raw)
+                    ? raw - config_.sizePenalty * static_cast<double>(ind.genome.size())
+                    : kWorst;
+}
+
+int Evolution::promote() {
+  if (!(config_.promote > 0)) return 0;
+  std::vector<std::size_t> field;  // The individuals at the rung below, best first.
+  for (std::size_t i = 0; i < population_.size(); ++i) {
+    if (std::isfinite(population_[i].fitness)) field.push_back(i);
+  }
+  int evaluations = 0;
+  for (std::size_t r = 1; r <= rungs_.size(); ++r) {
+    std::stable_sort(field.begin(), field.end(), [&](std::size_t a, std::size_t b) {
+      return ranksAbove(population_[a], population_[b]);
+    });
+    field.resize(std::min(field.size(), static_cast<std::size_t>(std::ceil(
+                                            config_.promote * static_cast<double>(field.size())))));
+    if (field.empty()) break;
+    std::vector<const expr::Genome*> genomes;
+    std::vector<std::uint64_t> seeds;
+    for (const std::size_t i : field) {
+      genomes.push_back(&population_[i].genome);
+      seeds.push_back(config_.commonRandomNumbers
+                          ? deriveSeed(config_.seed, kRungStream, generation_, r)
+                          : deriveSeed(config_.seed, kRungStream, generation_, r, i));
+    }
+    const auto raw = rungs_[r - 1]->evaluate(genomes, seeds);
+    for (std::size_t k = 0; k < field.size(); ++k) {
+      setFitness(population_[field[k]], raw[k], static_cast<int>(r));
+    }
+    evaluations += static_cast<int>(field.size());
+    // A non-finite result at a longer rung ends the individual's climb.
+    std::erase_if(field, [&](std::size_t i) { return !std::isfinite(population_[i].fitness); });
+  }
+  return evaluations;
+}
+
 GenerationStats Evolution::evaluate(double startSeconds) {
   std::vector<const expr::Genome*> genomes;
   std::vector<std::uint64_t> seeds;
@@ -248,14 +302,7 @@ GenerationStats Evolution::evaluate(double startSeconds) {
                         : deriveSeed(config_.seed, kEvaluationStream, generation_, i));
   }
   const auto raw = evaluator_.evaluate(genomes, seeds);
-  constexpr double worst = -std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < population_.size(); ++i) {
-    Individual& ind = population_[i];
-    const double r = raw[i];
-    ind.rawFitness = std::isfinite(r) ? r : worst;
-    ind.fitness =
-        std::isfinite(r) ? r - config_.sizePenalty * static_cast<double>(ind.genome.size()) : worst;
-  }
+  for (std::size_t i = 0; i < population_.size(); ++i) setFitness(population_[i], raw[i], 0);
 
   GenerationStats stats;
   stats.generation = generation_;
@@ -271,10 +318,8 @@ GenerationStats Evolution::evaluate(double startSeconds) {
   stats.invalid = static_cast<int>(population_.size() - finite.size());
   stats.meanSize = sizeSum / n;
   stats.meanFeatures = featureSum / n;
-  stats.bestIndividual = best();
-  stats.best = stats.bestIndividual.fitness;
   if (finite.empty()) {
-    stats.mean = stats.median = worst;
+    stats.mean = stats.median = kWorst;
   } else {
     stats.mean =
         std::accumulate(finite.begin(), finite.end(), 0.0) / static_cast<double>(finite.size());
@@ -282,6 +327,9 @@ GenerationStats Evolution::evaluate(double startSeconds) {
     const std::size_t m = finite.size() / 2;
     stats.median = finite.size() % 2 ? finite[m] : 0.5 * (finite[m - 1] + finite[m]);
   }
+  stats.promotions = promote();
+  stats.bestIndividual = best();
+  stats.best = stats.bestIndividual.fitness;
   stats.seconds = nowSeconds() - startSeconds;
   return stats;
 }

@@ -54,9 +54,11 @@ expr::Genome genomeFrom(const json& j) {
 std::string formatCheckpoint(const Checkpoint& c) {
   json population = json::array();
   for (const auto& ind : c.state.population) {
-    population.push_back({{"features", genomeJson(ind.genome)},
-                          {"raw", number(ind.rawFitness)},
-                          {"fitness", number(ind.fitness)}});
+    json entry = {{"features", genomeJson(ind.genome)},
+                  {"raw", number(ind.rawFitness)},
+                  {"fitness", number(ind.fitness)}};
+    if (ind.rung > 0) entry["rung"] = ind.rung;  // Successive halving only: older files stay.
+    population.push_back(std::move(entry));
   }
   json cache = json::array();
   for (const auto& [key, record] : c.cache) {
@@ -126,8 +128,8 @@ Checkpoint parseCheckpoint(const std::string& text, const std::string& source) {
     c.state.rng.spare = rng.at("spare").get<double>();
     c.state.operatorCounts = j.at("operator_counts").get<std::vector<long>>();
     for (const auto& ind : j.at("population")) {
-      c.state.population.push_back(
-          {genomeFrom(ind.at("features")), number(ind.at("raw")), number(ind.at("fitness"))});
+      c.state.population.push_back({genomeFrom(ind.at("features")), number(ind.at("raw")),
+                                    number(ind.at("fitness")), ind.value("rung", 0)});
     }
     for (const auto& entry : j.at("cache")) {
       c.cache[entry.at(0).get<std::string>()] = {number(entry.at(1)), entry.at(2).get<int>()};

@@ -38,7 +38,31 @@ gp::GenomeFilter admissible(const ExperimentConfig& config, const LearningTask& 
       [sample = task.stateSample()](const expr::Genome& g) { return variesOnSample(g, *sample); };
 }
 
+std::vector<gp::Evaluator*> pointers(const std::vector<std::unique_ptr<gp::Evaluator>>& owned) {
+  std::vector<gp::Evaluator*> out;
+  for (const auto& e : owned) out.push_back(e.get());
+  return out;
+}
+
 }  // namespace
+
+std::vector<std::unique_ptr<gp::Evaluator>> makeRungEvaluators(const ExperimentConfig& config,
+                                                               const DiscoveryOptions& options) {
+  std::vector<std::unique_ptr<gp::Evaluator>> evaluators;
+  int r = 0;
+  for (const auto& rung : fitnessRungs(config)) {
+    ++r;
+    if (options.makeEvaluator) {
+      evaluators.push_back(options.makeEvaluator({rung, formatExperimentConfig(rung), {}, r}));
+      continue;
+    }
+    auto task = std::make_shared<const LearningTask>(rung, LearningTask::Budget::Trial);
+    evaluators.push_back(std::make_unique<ThreadEvaluator>(
+        [task](const expr::Genome& g, Rng& rng) { return trialFitness(*task, g, rng); },
+        options.threads));
+  }
+  return evaluators;
+}
 
 struct Discovery::State {
   ExperimentConfig config;
@@ -49,6 +73,8 @@ struct Discovery::State {
   std::atomic<int> stage{RunStage::Generations}, stageDone{0}, stageTotal{0};  // Discovery::stage
   int threads = 0;  // As recorded in run.json: the resolved count, or the option given to MPI.
   std::unique_ptr<gp::Evaluator> evaluator;
+  // Successive halving's longer rungs (fitnessRungs), shortest first; none without it.
+  std::vector<std::unique_ptr<gp::Evaluator>> rungEvaluators;
   std::shared_ptr<TrialRunner> trialRunner;  // Validation's and confirmation's trials.
   gp::CachingEvaluator cache;
   gp::Evolution evolution;
@@ -62,11 +88,12 @@ struct Discovery::State {
         configText(formatExperimentConfig(c)),
         task(c, LearningTask::Budget::Trial),
         evaluator(makeEvaluator()),
+        rungEvaluators(makeRungEvaluators(c, o)),
         trialRunner(o.trialRunner ? o.trialRunner : std::make_shared<ThreadTrialRunner>(threads)),
         cache(*evaluator, c.trials, c.maxTrials,
               static_cast<int>(std::lround(c.reevaluationShare * c.gp.population))),
         evolution(gpConfig(c), searchSpace(c, static_cast<int>(task.stateDim())), cache,
-                  reducer(c, task), admissible(c, task)) {}
+                  reducer(c, task), admissible(c, task), pointers(rungEvaluators)) {}
 
   std::unique_ptr<gp::Evaluator> makeEvaluator() {
     if (options.makeEvaluator) {

@@ -55,6 +55,8 @@ void visit(V& v, ExperimentConfig& c) {
   v.boolean("fitness", "with_original", c.withOriginal);
   v.boolean("fitness", "normalise", c.normalise);
   v.integer("fitness", "state_sample", c.stateSample, 16, 100000);
+  v.real("fitness", "promote", c.gp.promote, 0.0, 0.99);
+  v.params("fitness.rung_params", c.rungParams);
   v.text("primitives", "set", c.primitives);
   v.reals("primitives", "constants", c.constants);
   v.boolean("primitives", "ephemeral", c.ephemeral);
@@ -332,13 +334,16 @@ void validateAt(const ExperimentConfig& c, const Place& place) {
                place);
   requireKnown(c.validation.confirmParams, learnerParamNames, "learner " + c.learner,
                "validation.confirm_params", place);
+  requireKnown(c.rungParams, learnerParamNames, "learner " + c.learner, "fitness.rung_params",
+               place);
   makeAt([&] { return learners.make(c.learner, c.learnerParams); }, c.learner,
          {{"learner.params", &c.learnerParams}}, place("learner", "name"), place);
   // The assessment, validation and confirmation budgets, as LearningTask sees them.
   const std::vector<std::pair<const Params*, const char*>> budgets{
       {&c.assessParams, "assess.params"},
       {&c.validation.params, "validation.params"},
-      {&c.validation.confirmParams, "validation.confirm_params"}};
+      {&c.validation.confirmParams, "validation.confirm_params"},
+      {&c.rungParams, "fitness.rung_params"}};
   for (const auto& [overrides, section] : budgets) {
     Params merged = c.learnerParams;
     for (const auto& [key, value] : *overrides) merged[key] = value;
@@ -355,6 +360,13 @@ void validateAt(const ExperimentConfig& c, const Place& place) {
       "validation.confirm_looks must leave at least 2 confirmation seeds per look "
       "(confirm_seeds >= 2 * confirm_looks)",
       place("validation", "confirm_looks"));
+  require(c.gp.promote == 0 || c.validation.confirms(),
+          "fitness.promote needs a confirmation (validation.candidates and "
+          "validation.confirm_seeds above 0): its longest rung is the confirmation's training",
+          place("fitness", "promote"));
+  require(c.rungParams.empty() || c.gp.promote > 0,
+          "fitness.rung_params is the middle rung of successive halving: set fitness.promote too",
+          place("fitness", "rung_params"));
   require(c.maxTrials == 0 || c.maxTrials >= c.trials,
           "fitness.max_trials must be 0 (no re-evaluation) or at least fitness.trials (" +
               std::to_string(c.trials) + ")",

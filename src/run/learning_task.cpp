@@ -131,4 +131,21 @@ double trialFitness(const LearningTask& task, const expr::Genome& genome, Rng& r
   return sum / task.config().trials;
 }
 
+std::vector<ExperimentConfig> fitnessRungs(const ExperimentConfig& config) {
+  std::vector<ExperimentConfig> rungs;
+  if (!(config.gp.promote > 0)) return rungs;
+  const auto rung = [&config](const std::map<std::string, std::string>& overrides,
+                              TrialMeasure measure) {
+    ExperimentConfig c = config;
+    for (const auto& [key, value] : overrides) c.learnerParams[key] = value;
+    c.measure = measure;
+    c.gp.promote = 0.0;
+    c.rungParams.clear();
+    return c;
+  };
+  if (!config.rungParams.empty()) rungs.push_back(rung(config.rungParams, config.measure));
+  rungs.push_back(rung(config.validation.confirmParams, config.validation.confirmMeasure));
+  return rungs;
+}
+
 }  // namespace gpfd::run

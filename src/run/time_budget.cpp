@@ -61,7 +61,8 @@ double confirmationSeconds(const CostMeasure& c, int confirmSeeds) {
 }
 double gpSeconds(const CostMeasure& c, int population, int generations) {
   return population * c.randomEvaluation +
-         (generations - 1) * population * kFreshShare * c.learnedEvaluation;
+         (generations - 1) * population * kFreshShare * c.learnedEvaluation +
+         generations * population * c.rungEvaluations;
 }
 
 }  // namespace
@@ -124,6 +125,18 @@ CostMeasure measureCosts(const ExperimentConfig& config, const DiscoveryOptions&
     const double seconds = wallSeconds([&] { curves = runner.run(trained, batch, {})[0]; });
     return seconds / (2.0 * workers);
   };
+  // Successive halving's rungs: the original variables' evaluation at each, two per worker.
+  const auto rungs = makeRungEvaluators(config, options);
+  for (std::size_t r = 0; r < rungs.size(); ++r) {
+    const std::vector<const expr::Genome*> pointers(static_cast<std::size_t>(2 * workers),
+                                                    &variables);
+    std::vector<std::uint64_t> seeds;
+    for (int i = 0; i < 2 * workers; ++i) {
+      seeds.push_back(seedAt(8 + r, rounds * 2 * workers + i));
+    }
+    const double each = wallSeconds([&] { rungs[r]->evaluate(pointers, seeds); }) / (2.0 * workers);
+    costs.rungEvaluations += std::pow(config.gp.promote, static_cast<double>(r + 1)) * each;
+  }
   perRun(LearningTask::Budget::Trial, TrialFeatures::original(), 7);
   const double trialSteps = stepsPerEpisode(curves, 0.0);
   double endSteps = stepsPerEpisode(curves, 0.75);
@@ -176,13 +189,16 @@ BudgetSizes sizeToBudget(const ExperimentConfig& config, const CostMeasure& cost
   // a learned evaluation; u: kFreshShare); the generations G that then fill the rest, which
   // the run fits to its deadline after each generation (DiscoveryOptions::deadline).
   const double rest = seconds - sizes.finishSeconds;
-  const double a = kFreshShare * costs.learnedEvaluation / kRatio;
-  const double b = costs.randomEvaluation - kFreshShare * costs.learnedEvaluation;
+  // With successive halving every generation's rungs add to both r and u l.
+  const double first = costs.randomEvaluation + costs.rungEvaluations;
+  const double later = kFreshShare * costs.learnedEvaluation + costs.rungEvaluations;
+  const double a = later / kRatio;
+  const double b = first - later;
   const double population =
       a > 0.0 ? (-b + std::sqrt(b * b + 4.0 * a * std::max(0.0, rest))) / (2 * a) : 0.0;
   sizes.population = std::max(kMinPopulation, static_cast<int>(std::floor(population)));
-  const double perGeneration = sizes.population * kFreshShare * costs.learnedEvaluation;
-  const double after = rest - sizes.population * costs.randomEvaluation;
+  const double perGeneration = sizes.population * later;
+  const double after = rest - sizes.population * first;
   const int expected = perGeneration > 0.0
                            ? 1 + static_cast<int>(std::floor(std::max(0.0, after) / perGeneration))
                            : 2;
@@ -221,24 +237,25 @@ ExperimentConfig withSizes(ExperimentConfig config, const BudgetSizes& sizes) {
 }
 
 std::string budgetJson(double budget, const CostMeasure& costs, const BudgetSizes& sizes) {
-  const nlohmann::ordered_json j{{"seconds", budget},
-                                 {"measured",
-                                  {{"seconds", costs.seconds},
-                                   {"random_evaluation", costs.randomEvaluation},
-                                   {"learned_evaluation", costs.learnedEvaluation},
-                                   {"episode_growth", costs.growth},
-                                   {"validation_run", costs.validationRun},
-                                   {"confirmation_run", costs.confirmationRun},
-                                   {"no_learning_validation_run", costs.noLearningValidation},
-                                   {"no_learning_confirmation_run", costs.noLearningConfirmation}}},
-                                 {"chosen",
-                                  {{"population", sizes.population},
-                                   {"generations", sizes.generations},
-                                   {"candidates", sizes.candidates},
-                                   {"seeds", sizes.seeds},
-                                   {"confirm_seeds", sizes.confirmSeeds},
-                                   {"predicted_seconds_per_run", sizes.predictedSeconds},
-                                   {"validation_and_confirmation_seconds", sizes.finishSeconds}}}};
+  nlohmann::ordered_json j{{"seconds", budget},
+                           {"measured",
+                            {{"seconds", costs.seconds},
+                             {"random_evaluation", costs.randomEvaluation},
+                             {"learned_evaluation", costs.learnedEvaluation},
+                             {"episode_growth", costs.growth},
+                             {"validation_run", costs.validationRun},
+                             {"confirmation_run", costs.confirmationRun},
+                             {"no_learning_validation_run", costs.noLearningValidation},
+                             {"no_learning_confirmation_run", costs.noLearningConfirmation}}},
+                           {"chosen",
+                            {{"population", sizes.population},
+                             {"generations", sizes.generations},
+                             {"candidates", sizes.candidates},
+                             {"seeds", sizes.seeds},
+                             {"confirm_seeds", sizes.confirmSeeds},
+                             {"predicted_seconds_per_run", sizes.predictedSeconds},
+                             {"validation_and_confirmation_seconds", sizes.finishSeconds}}}};
+  if (costs.rungEvaluations > 0) j["measured"]["rung_evaluations"] = costs.rungEvaluations;
   return j.dump();
 }
 

@@ -8,17 +8,12 @@
 #include "gpfd/expr/eval.hpp"
 #include "gpfd/gp/fitness_cache.hpp"
 #include "gpfd/util/error.hpp"
+#include "small_space.hpp"
 
 namespace gpfd::gp {
 namespace {
 
-SearchSpace smallSpace() {
-  SearchSpace s;
-  s.primitives = expr::PrimitiveSet::named("control");
-  s.variableCount = 2;
-  s.limits = {1, 5, 6, 30};
-  return s;
-}
+using fixtures::smallSpace;
 
 // A cheap fitness that uses its RNG: closeness of the first feature to a*b on noisy samples.
 double noisyFitness(const expr::Genome& g, Rng& rng) {

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "cli_helpers.hpp"
+#include "gpfd/run/learning_task.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::run {
@@ -161,6 +162,42 @@ TEST(ExperimentConfig, RejectingConstantGenomesNeedsDistinctOffspring) {
   // Written and read back (config.toml of a run, its resume).
   const auto again = parseExperimentConfig(formatExperimentConfig(both), "config.toml");
   EXPECT_TRUE(again.rejectConstant && again.gp.distinctOffspring);
+}
+
+// Successive halving's keys: its longest rung is the confirmation's, its middle one needs it on.
+TEST(ExperimentConfig, SuccessiveHalvingNeedsAConfirmationAndChecksItsRung) {
+  const std::string path = GPFD_SOURCE_DIR "/configs/cartpole-quick.toml";
+  const auto refusedFor = [&](const std::vector<std::string>& overrides) {
+    try {
+      loadExperimentConfig(path, overrides);
+    } catch (const InputError& e) {
+      return std::string(e.what()) + " @ " + e.where();
+    }
+    return std::string("accepted");
+  };
+  EXPECT_TRUE(has(refusedFor({"fitness.promote=0.3", "validation.confirm_seeds=0"}),
+                  "fitness.promote needs a confirmation"));
+  EXPECT_TRUE(has(refusedFor({"fitness.rung_params.updates=100"}), "set fitness.promote too"));
+  EXPECT_TRUE(has(refusedFor({"fitness.promote=0.3", "fitness.rung_params.updatez=100"}),
+                  "fitness.rung_params"));
+  EXPECT_TRUE(has(refusedFor({"fitness.promote=1"}), "fitness.promote"));
+  const auto config =
+      loadExperimentConfig(path, {"fitness.promote=0.25", "fitness.rung_params.updates=100"});
+  const auto again = parseExperimentConfig(formatExperimentConfig(config), "config.toml");
+  EXPECT_EQ(again.gp.promote, 0.25);
+  EXPECT_EQ(again.rungParams, (std::map<std::string, std::string>{{"updates", "100"}}));
+  // The rungs: the middle one, then the confirmation's training, each with halving off.
+  const auto rungs = fitnessRungs(config);
+  ASSERT_EQ(rungs.size(), 2u);
+  EXPECT_EQ(rungs[0].learnerParams.at("updates"), "100");
+  EXPECT_EQ(rungs[0].measure, config.measure);
+  EXPECT_EQ(rungs[1].learnerParams.at("updates"), config.validation.confirmParams.at("updates"));
+  EXPECT_EQ(rungs[1].measure, config.validation.confirmMeasure);
+  for (const auto& rung : rungs) {
+    EXPECT_EQ(rung.gp.promote, 0.0);
+    EXPECT_NO_THROW(validate(rung));
+  }
+  EXPECT_TRUE(fitnessRungs(loadExperimentConfig(path)).empty());
 }
 
 TEST(ExperimentConfig, EvolveTakesABigSeedAndStoresIt) {

@@ -39,6 +39,12 @@ struct GpConfig {
   // population breeds copies of its best, which the fitness cache answers without a trial: the
   // generations go on, the search does not.
   bool distinctOffspring = false;
+  // Successive halving (docs/discovery.md): after the generation's evaluation, the best
+  // ceil(promote x n) of its n individuals with a finite fitness are evaluated again by the first
+  // longer rung's evaluator (Evolution's `rungs`), the best promote share of those by the next,
+  // and so on; an individual's fitness is that of the longest rung it reached, and selection ranks
+  // a longer rung above a shorter one (ranksAbove). 0: off.
+  double promote = 0.0;
   std::uint64_t seed = 1;
 };
 
@@ -55,16 +61,24 @@ struct Individual {
   expr::Genome genome;
   double rawFitness = 0.0;  // As the evaluator returned it (non-finite -> -inf).
   double fitness = 0.0;     // rawFitness minus the size penalty; what selection uses.
+  // The rung its fitness comes from this generation: 0 the short trials, r the r-th longer rung
+  // (GpConfig::promote).
+  int rung = 0;
 };
+
+// Selection's order: a finite fitness above a non-finite one, then a longer rung above a shorter
+// one, then the higher fitness. Without promotions (every rung 0) it is `a.fitness > b.fitness`.
+bool ranksAbove(const Individual& a, const Individual& b);
 
 struct GenerationStats {
   int generation = 0;
-  double best = 0.0;  // Penalised fitness of the best individual.
-  double mean = 0.0;  // Over the individuals with a finite fitness.
-  double median = 0.0;
+  double best = 0.0;          // Penalised fitness of the best individual.
+  double mean = 0.0;          // Over the individuals with a finite fitness.
+  double median = 0.0;        // Mean and median of the short trials' fitness (rung 0).
   double meanSize = 0.0;      // Nodes per individual.
   double meanFeatures = 0.0;  // Features per individual.
   int evaluations = 0;        // Genomes sent to the evaluator this generation (elites included).
+  int promotions = 0;         // Evaluations at longer rungs (GpConfig::promote).
   int invalid = 0;            // Individuals with a non-finite fitness.
   double seconds = 0.0;       // Wall time of the generation.
   Individual bestIndividual;
@@ -85,21 +99,25 @@ using GenomeReducer = std::function<expr::Genome(const expr::Genome&)>;
 // a pure function of the genome. Used only with GpConfig::distinctOffspring.
 using GenomeFilter = std::function<bool(const expr::Genome&)>;
 
-// Contract: the run is a pure function of (config, space, fitness, reducer); evaluation seeds are
-// deriveSeed(config.seed, kEvaluationStream, generation, index), or deriveSeed(config.seed,
-// kEvaluationStream, generation) for every index with common random numbers. Every individual,
-// elites included, is passed to the evaluator each generation, so that an evaluator that
-// re-evaluates (CachingEvaluator) can refine the fitness of the survivors.
+// Contract: the run is a pure function of (config, space, fitness, reducer, rungs); evaluation
+// seeds are deriveSeed(config.seed, kEvaluationStream, generation, index), or
+// deriveSeed(config.seed, kEvaluationStream, generation) for every index with common random
+// numbers; at rung r > 0, deriveSeed(config.seed, kRungStream, generation, r, index) (without the
+// index likewise). Every individual, elites included, is passed to the evaluator each generation,
+// so that an evaluator that re-evaluates (CachingEvaluator) can refine the fitness of the
+// survivors.
 class Evolution {
  public:
   static constexpr std::uint64_t kVariationStream = 0;
   static constexpr std::uint64_t kEvaluationStream = 1;
+  static constexpr std::uint64_t kRungStream = 2;
 
   static constexpr int kBreedRetries = 8;
   static constexpr int kRandomRetries = 8;
 
+  // `rungs`: the evaluators of the longer rungs, shortest first (used with config.promote > 0).
   Evolution(GpConfig config, SearchSpace space, Evaluator& evaluator, GenomeReducer reduce = {},
-            GenomeFilter admissible = {});
+            GenomeFilter admissible = {}, std::vector<Evaluator*> rungs = {});
 
   // Creates and evaluates generation 0.
   GenerationStats initialize();
@@ -131,6 +149,10 @@ class Evolution {
                                              bool random);
   // Evaluates the whole population and computes the statistics.
   GenerationStats evaluate(double startSeconds);
+  // GpConfig::promote: the best of each rung evaluated at the next; how many evaluations.
+  int promote();
+  // rawFitness from the evaluator's `raw` (non-finite -> -inf), fitness less the size penalty.
+  void setFitness(Individual& ind, double raw, int rung) const;
   expr::Genome reduced(expr::Genome genome) const;
 
   GpConfig config_;
@@ -141,6 +163,7 @@ class Evolution {
   Evaluator& evaluator_;
   GenomeReducer reduce_;
   GenomeFilter admissible_;
+  std::vector<Evaluator*> rungs_;
   Rng rng_;
   int generation_ = -1;
   std::vector<Individual> population_;

@@ -34,6 +34,9 @@ struct EvaluatorSetup {
   const ExperimentConfig& config;     // The run's config (generations possibly extended).
   std::string configText;             // formatExperimentConfig(config): rebuilds the LearningTask.
   std::function<void()> onEvaluated;  // Call once per finished fitness (progress display).
+  // 0: the GP's short trials; r > 0: successive halving's r-th longer rung (fitnessRungs), whose
+  // config is `config`. A factory that cannot make such an evaluator throws InputError.
+  int rung = 0;
 };
 using EvaluatorFactory = std::function<std::unique_ptr<gp::Evaluator>(const EvaluatorSetup&)>;
 
@@ -59,6 +62,12 @@ struct DiscoveryOptions {
   std::optional<std::chrono::steady_clock::time_point> deadline;
   double finishSeconds = 0.0;
 };
+
+// The evaluators of successive halving's longer rungs (fitnessRungs), shortest first: made by
+// options.makeEvaluator (EvaluatorSetup::rung) or on options.threads threads; none when
+// fitness.promote is 0.
+std::vector<std::unique_ptr<gp::Evaluator>> makeRungEvaluators(const ExperimentConfig& config,
+                                                               const DiscoveryOptions& options);
 
 // InputError when `dir` already holds a run (checkpoint.json) or a set of runs (runs.json):
 // neither a run nor a set is ever started over either.

@@ -54,6 +54,11 @@ struct ExperimentConfig {
   bool normalise = false;
   // Visited states sampled (random actions) for redundancy and normalisation.
   int stateSample = 512;
+  // Successive halving (fitness.promote, as gp.promote: gp/evolution.hpp): the rungs after the
+  // short trials are this middle one, the learner's settings overridden by rungParams, when it is
+  // not empty, and then the confirmation's training (validation.confirm_params, scored by
+  // validation.confirm_measure); each rung evaluation is `trials` trainings (fitnessRungs).
+  std::map<std::string, std::string> rungParams;
 
   std::string primitives = "control";
   std::vector<double> constants{1.0, 2.0};

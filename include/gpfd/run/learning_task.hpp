@@ -75,4 +75,11 @@ std::shared_ptr<const features::FeatureMap> genomeFeatureMap(const expr::Genome&
 // diverged trial makes the fitness -inf (worst).
 double trialFitness(const LearningTask& task, const expr::Genome& genome, Rng& rng);
 
+// Successive halving's longer rungs (fitness.promote), shortest first: the middle rung when
+// fitness.rung_params is set, then the confirmation's training. Each is the run's config with its
+// short trial made the rung's training (learner.params overridden, the rung's measure) and
+// successive halving off, so that trialFitness of LearningTask(rung, Budget::Trial) is the rung's
+// evaluation, on any evaluator. Empty when fitness.promote is 0.
+std::vector<ExperimentConfig> fitnessRungs(const ExperimentConfig& config);
+
 }  // namespace gpfd::run

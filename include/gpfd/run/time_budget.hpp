@@ -27,6 +27,10 @@ struct CostMeasure {
   double validationRun = 0.0;    // A validation training of the original variables.
   double confirmationRun = 0.0;  // A confirmation training of the original variables.
   double noLearningValidation = 0.0, noLearningConfirmation = 0.0;  // Of the no-learning reference.
+  // Successive halving (fitness.promote): per individual and generation, the longer rungs' cost,
+  // each rung's evaluation of the original variables times the share promoted to it
+  // (promote^r); 0 without it.
+  double rungEvaluations = 0.0;
   double seconds = 0.0;  // The measurement's own wall time.
 };
 
