@@ -86,6 +86,7 @@ std::string formatCheckpoint(const Checkpoint& c) {
                        {"cache_hits", r.cacheHits},
                        {"seconds", r.seconds},
                        {"best_genome", genomeJson(r.bestGenome)}});
+    if (r.promotions > 0) history.back()["promotions"] = r.promotions;  // Older files stay.
   }
   const auto& rng = c.state.rng;
   json j = {{"format", kFormat},
@@ -140,7 +141,7 @@ Checkpoint parseCheckpoint(const std::string& text, const std::string& source) {
                            r.at("mean_size").get<double>(), r.at("mean_features").get<double>(),
                            r.at("evaluations").get<int>(), r.at("reevaluations").get<int>(),
                            r.at("cache_hits").get<int>(), r.at("seconds").get<double>(),
-                           genomeFrom(r.at("best_genome"))});
+                           genomeFrom(r.at("best_genome")), r.value("promotions", 0)});
     }
     const auto& validation = j.at("validation");
     for (const auto& v : validation.at("sets")) {

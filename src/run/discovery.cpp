@@ -158,7 +158,8 @@ struct Discovery::State {
                             cache.lastReevaluated(),
                             cache.lastHits(),
                             stats.seconds,
-                            stats.bestIndividual.genome};
+                            stats.bestIndividual.genome,
+                            stats.promotions};
     history.push_back(record);
     writeFeaturesFile(path(fmt::format("best/generation-{:04d}.features", stats.generation)),
                       unvalidatedFile(stats.bestIndividual, stats.generation));

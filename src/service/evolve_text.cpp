@@ -84,9 +84,10 @@ void EvolveText::generationDone(const run::Discovery& discovery, const run::Gene
   const double perGeneration = total_ / static_cast<double>(r.generation + 1);
   o_.out(fmt::format(
       "{}{}gen {:3d}  best {:.6g}  mean {:.6g}  features {:.2f}  size {:.1f}  "
-      "evals {} (+{} cached, {} re-evaluated)  {}  ETA {}\n",
+      "evals {} (+{} cached, {} re-evaluated{})  {}  ETA {}\n",
       o_.terminal ? "\r\033[K" : "", label, r.generation, r.best, r.mean, r.meanFeatures,
       r.meanSize, r.evaluations - r.reevaluations, r.cacheHits, r.reevaluations,
+      r.promotions > 0 ? fmt::format(", {} at longer rungs", r.promotions) : std::string(),
       formatDuration(r.seconds), formatDuration(perGeneration * remaining)));
 }
 

@@ -174,6 +174,19 @@ TEST_F(MpiEvolve, MasterInputErrorReleasesTheWorkers) {
   EXPECT_EQ(r.output.find("timeout"), std::string::npos) << r.output;
 }
 
+TEST_F(MpiEvolve, SuccessiveHalvingIsRefusedBeforeTheRunStarts) {
+  // The workers hold one config at a time: fitness.promote's rungs cannot be sent to them.
+  const auto dir = freshDir("mpi-halving");
+  const auto r =
+      runMpi(3, "evolve " + tinyConfig() + " --set fitness.promote=0.3 --quiet --out " + dir);
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("fitness.promote (successive halving) is not available under MPI"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("timeout"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/checkpoint.json"));
+}
+
 TEST_F(MpiEvolve, SigintStopsEveryRankAfterACheckpoint) {
   const auto dir = freshDir("mpi-interrupted");
   const std::string logPath = dir + ".log";

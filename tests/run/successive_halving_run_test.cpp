@@ -21,8 +21,10 @@ std::string fingerprint(const std::string& dir) {
 TEST(SuccessiveHalvingRun, IsTheSameOnOneAndTwoThreadsAndDiffersFromAPlainRun) {
   const auto config = tinyEvolveConfig("halving", 3);
   const auto one = freshDir("halving-t1"), two = freshDir("halving-t2"), plain = freshDir("plain");
-  const auto r = runGpfd("evolve " + config + kHalving + " --quiet --threads 1 --out " + one);
+  const auto r = runGpfd("evolve " + config + kHalving + " --threads 1 --out " + one);
   ASSERT_EQ(r.status, 0) << r.output;
+  // 12 individuals: ceil(0.34 x 12) = 5 at the middle rung, ceil(0.34 x 5) = 2 of them at the last.
+  EXPECT_NE(r.output.find("7 at longer rungs"), std::string::npos) << r.output;
   ASSERT_EQ(runGpfd("evolve " + config + kHalving + " --quiet --threads 2 --out " + two).status, 0);
   EXPECT_EQ(fingerprint(one), fingerprint(two));
   // The longest rung's fitness is in the population, and selection used it.

@@ -25,6 +25,7 @@ struct GenerationRecord {
   int cacheHits = 0;
   double seconds = 0.0;
   expr::Genome bestGenome;
+  int promotions = 0;  // Evaluations at successive halving's longer rungs (fitness.promote).
 };
 
 struct Checkpoint {
