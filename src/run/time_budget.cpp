@@ -92,6 +92,15 @@ CostMeasure measureCosts(const ExperimentConfig& config, const DiscoveryOptions&
   // so that the load of a shared machine is averaged over a while.
   const auto space = searchSpace(config, static_cast<int>(task.stateDim()));
   const auto variables = variablesGenome(task.stateDim());
+  // Wall seconds of the original variables evaluated two per worker by `on`, seeds of `kind`
+  // from `first` on.
+  const auto variablesRound = [&](gp::Evaluator& on, std::uint64_t kind, int first) {
+    const std::vector<const expr::Genome*> pointers(static_cast<std::size_t>(2 * workers),
+                                                    &variables);
+    std::vector<std::uint64_t> seeds;
+    for (int i = 0; i < 2 * workers; ++i) seeds.push_back(seedAt(kind, first + i));
+    return wallSeconds([&] { on.evaluate(pointers, seeds); });
+  };
   double randomSeconds = 0.0, variablesSeconds = 0.0;
   int rounds = 0;
   do {
@@ -105,10 +114,7 @@ CostMeasure measureCosts(const ExperimentConfig& config, const DiscoveryOptions&
       seeds.push_back(seedAt(1, rounds * 4 * workers + i));
     }
     randomSeconds += wallSeconds([&] { evaluator->evaluate(pointers, seeds); });
-    pointers.assign(static_cast<std::size_t>(2 * workers), &variables);
-    seeds.clear();
-    for (int i = 0; i < 2 * workers; ++i) seeds.push_back(seedAt(2, rounds * 2 * workers + i));
-    variablesSeconds += wallSeconds([&] { evaluator->evaluate(pointers, seeds); });
+    variablesSeconds += variablesRound(*evaluator, 2, rounds * 2 * workers);
     ++rounds;
   } while (randomSeconds + variablesSeconds < minSeconds);
   costs.randomEvaluation = randomSeconds / (4.0 * workers * rounds);
@@ -128,13 +134,7 @@ CostMeasure measureCosts(const ExperimentConfig& config, const DiscoveryOptions&
   // Successive halving's rungs: the original variables' evaluation at each, two per worker.
   const auto rungs = makeRungEvaluators(config, options);
   for (std::size_t r = 0; r < rungs.size(); ++r) {
-    const std::vector<const expr::Genome*> pointers(static_cast<std::size_t>(2 * workers),
-                                                    &variables);
-    std::vector<std::uint64_t> seeds;
-    for (int i = 0; i < 2 * workers; ++i) {
-      seeds.push_back(seedAt(8 + r, rounds * 2 * workers + i));
-    }
-    const double each = wallSeconds([&] { rungs[r]->evaluate(pointers, seeds); }) / (2.0 * workers);
+    const double each = variablesRound(*rungs[r], 8 + r, 0) / (2.0 * workers);
     costs.rungEvaluations += std::pow(config.gp.promote, static_cast<double>(r + 1)) * each;
   }
   perRun(LearningTask::Budget::Trial, TrialFeatures::original(), 7);
