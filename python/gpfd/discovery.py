@@ -264,7 +264,9 @@ def evolve(
         the generations and the validation to end within it, written to config.toml. The config
         ``user-env`` (the default for an environment stepped in Python) holds 3 minutes; sizes
         given (``population``, ``generations``, ``gp.population`` or ``gp.generations`` in
-        ``set``) replace a budget that comes from the config.
+        ``set``) replace a budget that comes from the config. ``user-env`` also chooses Rprop's
+        step sizes on the task before the run (``learner.choose``; docs/discovery.md), written
+        to config.toml; ``learner.params.rprop`` in ``set`` replaces the choice.
     callback: called after each generation (once its checkpoint is written) with its statistics
         (generation, best, mean, median, mean_size, mean_features, evaluations, cache_hits,
         seconds, best_features); a true return value stops the run there.
@@ -473,7 +475,8 @@ def assess(
 
     env: one of gpfd's environments, or a Gymnasium id or a callable returning a Gymnasium
         environment (``env_kwargs`` go to it), whose runs step it in Python in ``threads`` worker
-        processes, as gpfd.evolve does; its default config is ``user-env``.
+        processes, as gpfd.evolve does; its default config is ``user-env``, whose learner
+        settings are chosen on the task as gpfd.evolve chooses them.
     executor: runs those runs on this executor's workers, as gpfd.evolve's ``executor``.
     params: ``k=v`` for the environment or the learner, like ``--param``.
     """

@@ -194,7 +194,7 @@ class PythonProgress final : public service::EvolveProgress {
   void alreadyComplete(const std::string& dir, int generations) override {
     text_.alreadyComplete(dir, generations);
   }
-  void budgetSized(const std::string& text) override { text_.budgetSized(text); }
+  void preparedRun(const std::string& text) override { text_.preparedRun(text); }
 
   // Whether the error being handled is an interruption: KeyboardInterrupt, or any error after
   // Ctrl-C (which may surface as another). Call within a catch block, without the GIL.

@@ -332,6 +332,9 @@ std::unique_ptr<Discovery> Discovery::start(const ExperimentConfig& config,
                                {"revision", options.revision},
                                {"threads", state->threads}};
     if (options.processes > 1) run["mpi_processes"] = options.processes;
+    if (!options.learnerChoiceJson.empty()) {
+      run["learner_choice"] = nlohmann::ordered_json::parse(options.learnerChoiceJson);
+    }
     if (!options.timeBudgetJson.empty()) {
       run["time_budget"] = nlohmann::ordered_json::parse(options.timeBudgetJson);
     }

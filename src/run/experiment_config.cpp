@@ -13,6 +13,7 @@
 #include "gpfd/io/suggest.hpp"
 #include "gpfd/io/toml_fields.hpp"
 #include "gpfd/rl/learner.hpp"
+#include "gpfd/run/learner_choice.hpp"
 #include "gpfd/run/plugin.hpp"
 #include "gpfd/run/sequential_test.hpp"
 #include "gpfd/util/atomic_file.hpp"
@@ -45,6 +46,7 @@ void visit(V& v, ExperimentConfig& c) {
   v.params("env.params", c.envParams);
   v.text("learner", "name", c.learner);
   v.params("learner.params", c.learnerParams);
+  v.choices("learner", c.learnerChoices, c.choiceSeeds);
   v.integer("fitness", "trials", c.trials, 1, 1000);
   v.integer("fitness", "max_trials", c.maxTrials, 0, 100000);
   v.real("fitness", "reevaluation_share", c.reevaluationShare, 0.0, 1.0);
@@ -187,6 +189,26 @@ struct Reader {
   }
   void boolean(const char* s, const char* k, bool& out) { r.read(s, k, out); }
   void params(const char* s, std::map<std::string, std::string>& out) { r.readParams(s, out); }
+  // `s`.choose: a table of a value or an array of values per key (learner parameters' values
+  // hold no commas); `s`.choose_seeds.
+  void choices(const char* s, std::map<std::string, std::vector<std::string>>& out, int& seeds) {
+    const std::string section = dotted(s, "choose");
+    std::map<std::string, std::string> joined;
+    r.readParams(section, joined);
+    for (const auto& [key, text] : joined) {
+      require(!text.empty(), section + "." + key + " must list at least one value",
+              r.where(section, key));
+      std::vector<std::string> values;
+      for (std::size_t from = 0;;) {
+        const std::size_t comma = text.find(',', from);
+        values.push_back(text.substr(from, comma - from));
+        if (comma == std::string::npos) break;
+        from = comma + 1;
+      }
+      out[key] = values;
+    }
+    r.read(s, "choose_seeds", seeds, 2, 100000);
+  }
   void measure(const char* s, const char* k, TrialMeasure& out) {
     std::string name = measureName(out);
     r.read(s, k, name, kMeasures);
@@ -227,6 +249,11 @@ struct Writer {
   }
   void boolean(const char* s, const char* k, bool& v) { w.write(s, k, v); }
   void params(const char* s, std::map<std::string, std::string>& v) { w.writeParams(s, v); }
+  void choices(const char* s, std::map<std::string, std::vector<std::string>>& v, int& seeds) {
+    if (v.empty()) return;  // Configs without a choice (every resolved one) keep their text.
+    for (const auto& [key, values] : v) w.write(dotted(s, "choose"), key, values);
+    w.write(s, "choose_seeds", static_cast<std::int64_t>(seeds));
+  }
   void measure(const char* s, const char* k, TrialMeasure& v) { w.write(s, k, measureName(v)); }
 };
 
@@ -338,6 +365,26 @@ void validateAt(const ExperimentConfig& c, const Place& place) {
                place);
   makeAt([&] { return learners.make(c.learner, c.learnerParams); }, c.learner,
          {{"learner.params", &c.learnerParams}}, place("learner", "name"), place);
+  // Each candidate of learner.choose over learner.params.
+  for (const auto& [key, values] : c.learnerChoices) {
+    require(std::find(learnerParamNames.begin(), learnerParamNames.end(), key) !=
+                learnerParamNames.end(),
+            "unknown parameter '" + key + "' of learner " + c.learner +
+                io::didYouMean(key, learnerParamNames),
+            place("learner.choose", key));
+    for (const auto& value : values) {
+      Params merged = c.learnerParams;
+      merged[key] = value;
+      const Params chosen{{key, value}};
+      makeAt([&] { return learners.make(c.learner, merged); }, c.learner,
+             {{"learner.choose", &chosen}}, place("learner.choose", key), place);
+    }
+  }
+  require(learnerCandidates(c).size() <= kMaxLearnerChoices,
+          fmt::format("learner.choose lists {} combinations; at most {} (each costs "
+                      "learner.choose_seeds trainings)",
+                      learnerCandidates(c).size(), kMaxLearnerChoices),
+          place("learner", "choose"));
   // The assessment, validation and confirmation budgets, as LearningTask sees them.
   const std::vector<std::pair<const Params*, const char*>> budgets{
       {&c.assessParams, "assess.params"},

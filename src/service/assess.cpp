@@ -3,14 +3,17 @@
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 #include "gpfd/env/environment.hpp"
 #include "gpfd/rl/learner.hpp"
+#include "gpfd/run/learner_choice.hpp"
 #include "gpfd/service/configs.hpp"
 #include "gpfd/service/feature_source.hpp"
 #include "gpfd/service/params.hpp"
 #include "gpfd/service/resources.hpp"
+#include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
 #include "gpfd/util/number.hpp"
 
@@ -120,9 +123,10 @@ AssessResult assess(const AssessRequest& r, const TextSink& print) {
   AssessResult result;
   result.config = assessConfig(r);
   const auto& config = result.config;
-  const run::LearningTask task(config, run::LearningTask::Budget::Assessment);
-  // Every input is read and checked before anything is written.
-  const auto sets = featureSets(r, task);
+  // Every input is read and checked before anything is trained or written (the sets do not
+  // depend on the learner's settings).
+  const auto sets =
+      featureSets(r, run::LearningTask(config, run::LearningTask::Budget::Assessment));
   // Every run's curve is kept until the statistics are computed.
   requireMemory(static_cast<double>(sets.size()) * config.assessRuns *
                     static_cast<double>(runBudget(config) + 1) * sizeof(rl::CurvePoint),
@@ -134,18 +138,31 @@ AssessResult assess(const AssessRequest& r, const TextSink& print) {
         [&](const std::string& dir) { refuseAssessment(r.out, dir); }, "output directory"));
     result.dir = lock->directory();
   }
+  run::ThreadTrialRunner threads(usableThreads(r.threads));
+  run::TrialRunner& runner = r.trialRunner ? *r.trialRunner : threads;
+  // The learner's settings of learner.choose, chosen as gpfd evolve chooses them (the same
+  // config and seed choose the same).
+  std::optional<run::LearnerChoice> choice;
+  if (!config.learnerChoices.empty()) {
+    choice = run::chooseLearnerSettings(config, runner);
+    result.config = run::withLearnerChoice(config, *choice);
+    if (print) print(run::learnerChoiceText(*choice));
+  }
+  const run::LearningTask task(config, run::LearningTask::Budget::Assessment);
   if (print) {
     print(fmt::format("gpfd assess: {} feature sets x {} runs on {} ({}), seed {}\n", sets.size(),
                       config.assessRuns, config.env, config.learner, config.seed));
   }
-  run::ThreadTrialRunner threads(usableThreads(r.threads));
-  run::TrialRunner& runner = r.trialRunner ? *r.trialRunner : threads;
   const auto runs = run::runAssessment(task, sets, config.assessRuns, config.seed, runner);
   result.summary = run::summarizeAssessment(runs, 0);
   result.runs = static_cast<long>(sets.size()) * config.assessRuns;
   if (lock) {
     run::writeAssessment(result.dir, runs, result.summary, config.env + ": " + config.learner,
                          rl::LearnerRegistry::global().info(config.learner).rowName);
+    if (choice) {
+      writeFileAtomically(result.dir + "/learner_choice.json",
+                          run::learnerChoiceJson(*choice) + "\n");
+    }
   }
   for (const auto& row : result.summary) result.diverged += row.diverged;
   if (print) {

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "gpfd/expr/genome.hpp"
+#include "gpfd/run/learner_choice.hpp"
 #include "gpfd/run/time_budget.hpp"
 #include "gpfd/service/configs.hpp"
 #include "gpfd/service/resources.hpp"
@@ -82,14 +83,21 @@ bool givesSizes(const EvolveRequest& request) {
 }
 
 // The config a resume is checked against: a config with a time budget stands for the sizes
-// that the budget chose when the run started (stored in DIR/config.toml).
+// that the budget chose when the run started, one with learner.choose for the settings chosen
+// (both stored in DIR/config.toml).
 std::optional<run::ExperimentConfig> expectedConfig(const EvolveRequest& request,
                                                     const std::string& dir) {
   if (request.config.empty()) return std::nullopt;
   auto expected = loadConfig(request.config, {});
   const std::string stored = dir + "/config.toml";
-  if (expected.timeBudget > 0.0 && fs::exists(stored)) {
-    const auto chosen = run::loadExperimentConfig(stored);
+  if (!fs::exists(stored)) return expected;
+  const auto chosen = run::loadExperimentConfig(stored);
+  for (const auto& [key, values] : expected.learnerChoices) {
+    const auto value = chosen.learnerParams.find(key);
+    if (value != chosen.learnerParams.end()) expected.learnerParams[key] = value->second;
+  }
+  expected.learnerChoices.clear();
+  if (expected.timeBudget > 0.0) {
     run::BudgetSizes sizes;
     sizes.population = chosen.gp.population;
     sizes.generations = chosen.gp.generations;
@@ -101,22 +109,38 @@ std::optional<run::ExperimentConfig> expectedConfig(const EvolveRequest& request
   return expected;
 }
 
-// Sizes `config` to its time budget (run/time_budget.hpp), measuring as the run will evaluate;
-// says what it chose and records it for run.json.
-run::ExperimentConfig sizeToBudget(const run::ExperimentConfig& config, int runs,
+// Chooses the learner's settings of learner.choose on the task (run/learner_choice.hpp), with
+// the trial runner the run will use; says what it chose and records it for run.json. `spent`:
+// the seconds it took.
+run::ExperimentConfig chooseLearner(const run::ExperimentConfig& config,
+                                    run::DiscoveryOptions& options, double& spent,
+                                    EvolveProgress& progress) {
+  run::validate(config);
+  run::ThreadTrialRunner threads(options.threads);
+  run::TrialRunner& runner = options.trialRunner ? *options.trialRunner : threads;
+  const auto choice = run::chooseLearnerSettings(config, runner);
+  progress.preparedRun(run::learnerChoiceText(choice));
+  options.learnerChoiceJson = run::learnerChoiceJson(choice);
+  spent = choice.seconds;
+  return run::withLearnerChoice(config, choice);
+}
+
+// Sizes `config` to its time budget (run/time_budget.hpp), measuring as the run will evaluate,
+// `spent` seconds of it gone already; says what it chose and records it for run.json.
+run::ExperimentConfig sizeToBudget(const run::ExperimentConfig& config, int runs, double spent,
                                    run::DiscoveryOptions& options, double& perRunSeconds,
                                    EvolveProgress& progress) {
   const std::string where = "time_budget (--time-budget)";
   if (options.processes > 1) {
     throw InputError("a time budget is not measured under MPI: give the sizes instead", where);
   }
+  const double left = config.timeBudget - spent;
   const auto costs = run::measureCosts(config, options, run::kMeasureShare * config.timeBudget);
-  const auto sizes =
-      run::sizeToBudget(config, costs, (config.timeBudget - costs.seconds) / runs, where, runs);
-  progress.budgetSized(run::budgetText(config.timeBudget, costs, sizes, runs));
+  const auto sizes = run::sizeToBudget(config, costs, (left - costs.seconds) / runs, where, runs);
+  progress.preparedRun(run::budgetText(config.timeBudget, costs, sizes, runs));
   options.timeBudgetJson = run::budgetJson(config.timeBudget, costs, sizes);
   // Run r of a set ends by r shares of the budget after the measurement.
-  perRunSeconds = (config.timeBudget - costs.seconds) / runs;
+  perRunSeconds = (left - costs.seconds) / runs;
   options.deadline = std::chrono::steady_clock::now() +
                      std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                          std::chrono::duration<double>(perRunSeconds));
@@ -201,10 +225,16 @@ EvolveResult evolve(const EvolveRequest& request, EvolveProgress& progress,
   // Sizes given (the generations, gp.population, gp.generations) replace a time budget that
   // comes from the config (user-env's default), unless the budget is given too.
   if (givesSizes(request) && !givesKey(overrides, "time_budget")) config.timeBudget = 0.0;
+  // A learner parameter given (learner.params.KEY) replaces its choice from the config.
+  std::erase_if(config.learnerChoices, [&](const auto& choice) {
+    return givesKey(overrides, "learner.params." + choice.first);
+  });
   const int runs = request.runs.value_or(1);
+  double spent = 0.0;          // Seconds of the budget spent choosing the learner's settings.
   double perRunSeconds = 0.0;  // A time budget's share of each run.
+  if (!config.learnerChoices.empty()) config = chooseLearner(config, options, spent, progress);
   if (config.timeBudget > 0.0) {
-    config = sizeToBudget(config, runs, options, perRunSeconds, progress);
+    config = sizeToBudget(config, runs, spent, options, perRunSeconds, progress);
   }
   // Parents and offspring with every genome at its size limits.
   requireMemory(2.0 * config.gp.population * config.limits.maxFeatures * config.limits.maxSize *

@@ -198,7 +198,7 @@ void EvolveText::setFinished(const std::vector<run::RunOutcome>& outcomes, const
   }
 }
 
-void EvolveText::budgetSized(const std::string& text) {
+void EvolveText::preparedRun(const std::string& text) {
   if (!o_.quiet) o_.out(text);
 }
 

@@ -71,7 +71,12 @@ def block():
     (FLAGS / "block").touch()
 
 
+GENERATIONS_DONE = False  # The learner's choice trains as the confirmation does, before GP.
+
+
 def on_generation(stats):
+    global GENERATIONS_DONE
+    GENERATIONS_DONE = stats["generation"] == 2
     if STAGE == "generations" and stats["generation"] == 1:
         block()  # Generation 2 blocks.
 
@@ -86,7 +91,7 @@ def evaluate(self, config_text, tasks):
 
 
 def trials(self, config_text, budget, tasks):
-    if (STAGE, budget) in (("validation", 1), ("confirmation", 2)):
+    if GENERATIONS_DONE and (STAGE, budget) in (("validation", 1), ("confirmation", 2)):
         block()
     return run_trials(self, config_text, budget, tasks)
 

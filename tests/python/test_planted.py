@@ -1,6 +1,9 @@
 """The planted-feature tasks (gpfd.planted) and the check that a set carries their answer
 (gpfd.planted_check): spaces, determinism, the vector form against the single one, the check."""
 
+import json
+import sys
+
 import gymnasium as gym
 import numpy as np
 import pytest
@@ -8,6 +11,11 @@ from gymnasium.vector import AutoresetMode
 
 import gpfd
 from gpfd import planted, planted_check
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:
+    import tomli as tomllib
 
 IDS = [t.gym_id for t in planted.TASKS.values()]
 
@@ -168,3 +176,33 @@ def test_check_rejects_what_misses_the_interaction(task, text):
 def test_r_squared_of_a_constant_target_is_refused():
     with pytest.raises(ValueError, match="constant"):
         planted_check.r_squared(np.ones(10), np.arange(10.0).reshape(10, 1))
+
+
+@pytest.mark.parametrize(
+    "env_id, chosen",
+    [
+        ("gpfd/PlantedProduct-v0", "small"),  # The large steps harm the raw variables here,
+        ("CartPole-v1", "large"),  # and the small ones learn far less here.
+    ],
+)
+def test_user_env_chooses_the_learner_steps_on_the_task(tmp_path, env_id, chosen):
+    # user-env's learner.choose: the original variables trained with each of Rprop's step sizes
+    # before the run; the better one is written into config.toml, with no choice left.
+    out = tmp_path / "run"
+    gpfd.evolve(
+        env=env_id,
+        seed=1,
+        population=6,
+        generations=1,
+        threads=2,
+        out=out,
+        callback=lambda stats: True,
+        verbose=False,
+    )  # Stopped after generation 0.
+    config = tomllib.loads((out / "config.toml").read_text())
+    assert config["learner"]["params"]["rprop"] == chosen
+    assert "choose" not in config["learner"]
+    info = json.loads((out / "run.json").read_text())["learner_choice"]
+    assert info["chosen"] == {"rprop": chosen}
+    means = {t["settings"]["rprop"]: t["mean"] for t in info["tried"]}
+    assert means[chosen] > means[{"large": "small", "small": "large"}[chosen]]

@@ -24,7 +24,7 @@ class StopAfterFirst final : public service::EvolveProgress {
                       const std::string&) override {
     stop_->store(true);
   }
-  void budgetSized(const std::string& text) override { said += text; }
+  void preparedRun(const std::string& text) override { said += text; }
   std::string said;
 
  private:

@@ -61,6 +61,9 @@ struct DiscoveryOptions {
   // and the checkpoint. Unset: none.
   std::optional<std::chrono::steady_clock::time_point> deadline;
   double finishSeconds = 0.0;
+  // The learner's settings tried and chosen (run/learner_choice.hpp), as JSON: run.json's
+  // "learner_choice"; empty: none.
+  std::string learnerChoiceJson;
 };
 
 // The evaluators of successive halving's longer rungs (fitnessRungs), shortest first: made by

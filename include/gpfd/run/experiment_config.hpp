@@ -39,6 +39,12 @@ struct ExperimentConfig {
   std::string learner = "pg";  // A registered learner (gpfd learners).
   // The short-trial budget and settings of the learner (its declared parameters).
   std::map<std::string, std::string> learnerParams;
+  // Candidate values of learner parameters (`learner.choose`, e.g. { rprop = ["large", "small"] }),
+  // of which the best for the original variables on this task is chosen before a run, on
+  // choiceSeeds fresh seeds (run/learner_choice.hpp), and stored in learnerParams; the resolved
+  // config keeps no choice. Empty: learnerParams as given.
+  std::map<std::string, std::vector<std::string>> learnerChoices;
+  int choiceSeeds = 10;
 
   int trials = 5;  // K short learning trials per fitness evaluation (the paper: 4-10).
   // Cap on the trials a genome accumulates: one met again gets K fresh trials until it has this

@@ -53,8 +53,9 @@ class EvolveProgress {
   virtual void setFinished(const std::vector<run::RunOutcome>&, const std::string& /*dir*/) {}
   // A resumed run that had nothing left to do.
   virtual void alreadyComplete(const std::string& /*dir*/, int /*generations*/) {}
-  // A time budget's measurement and the sizes it chose, in a line of text (before any run).
-  virtual void budgetSized(const std::string& /*text*/) {}
+  // What was measured and chosen before any run, a line of text each: the learner's settings
+  // chosen on the task (learner.choose), a time budget's measurement and the sizes it chose.
+  virtual void preparedRun(const std::string& /*text*/) {}
 };
 
 struct EvolveResult {

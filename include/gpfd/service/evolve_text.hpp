@@ -42,7 +42,7 @@ class EvolveText final : public EvolveProgress {
                    const std::string& label) override;
   void setFinished(const std::vector<run::RunOutcome>& outcomes, const std::string& dir) override;
   void alreadyComplete(const std::string& dir, int generations) override;
-  void budgetSized(const std::string& text) override;
+  void preparedRun(const std::string& text) override;
 
  private:
   void stopStatus();

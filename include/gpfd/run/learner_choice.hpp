@@ -1,0 +1,49 @@
+// run: the learner's settings chosen on the task before a run (`learner.choose`, user-env's
+// { rprop = ["large", "small"] }). The original variables are trained with each combination of
+// the candidate values on the same fresh seeds, with the confirmation's budget and measure (the
+// validation's without a confirmation); the combination with the best mean score becomes the
+// learner's settings for the whole run, GP's trials included. So the original variables, the
+// reference every verdict is against, are judged with the best of the candidate settings rather
+// than one that harms them on this task (docs/discovery.md, "The learner's settings chosen on the
+// task"). The choice is a pure function of the config and its seed; the resolved config stores
+// the values chosen and no choice, so a resume, or that config run again, gives the same run.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "gpfd/run/experiment_config.hpp"
+#include "gpfd/run/trial_runner.hpp"
+
+namespace gpfd::run {
+
+// The most combinations `learner.choose` may list (each costs choose_seeds trainings).
+inline constexpr std::size_t kMaxLearnerChoices = 16;
+
+// Every combination of learner.choose's values as learner settings, in order: keys
+// alphabetically, the last key's values varying fastest, each key's values as listed.
+std::vector<std::map<std::string, std::string>> learnerCandidates(const ExperimentConfig& config);
+
+struct LearnerChoice {
+  std::vector<std::map<std::string, std::string>> candidates;  // learnerCandidates(config).
+  std::vector<double> means;  // The original variables' mean score with each (-inf: diverged).
+  std::size_t chosen = 0;     // The best mean; the first listed of equal ones.
+  int seeds = 0;
+  bool confirmation = true;  // Trained as the confirmation trains (else as the validation).
+  double seconds = 0.0;      // Wall time of the trainings.
+};
+
+// Trains the original variables with each candidate on config.choiceSeeds seeds of a stream of
+// their own (never the run's), on `runner`, and picks the best. Needs learner.choose.
+LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner& runner);
+
+// `config` with the chosen values in learner.params and no choice left.
+ExperimentConfig withLearnerChoice(ExperimentConfig config, const LearnerChoice& choice);
+
+// What was tried and chosen: one line of text (with the seconds it took), and JSON (run.json's
+// "learner_choice": no timing, so that a run's files are the same bytes on any machine).
+std::string learnerChoiceText(const LearnerChoice& choice);
+std::string learnerChoiceJson(const LearnerChoice& choice);
+
+}  // namespace gpfd::run

@@ -1,0 +1,189 @@
+// The learner's settings chosen on the task (learner.choose, run/learner_choice.hpp): the choice
+// is the best of the candidates for the original variables, the same on any number of threads,
+// written into the resolved config (and run.json) with no choice left, kept by a resume, and
+// replaced by a value given; bad choices are errors naming the key.
+#include "gpfd/run/learner_choice.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
+#include "cli_helpers.hpp"
+#include "gpfd/service/assess.hpp"
+#include "gpfd/service/configs.hpp"
+#include "gpfd/service/evolve.hpp"
+#include "gpfd/util/error.hpp"
+
+namespace gpfd::testing {
+namespace {
+
+// A tiny cart-pole config choosing Rprop's steps.
+std::string choosingConfig() {
+  return writeText("choose.toml", R"(name = "choose"
+seed = 3
+[env]
+name = "cartpole"
+params = { max_steps = 200 }
+[learner]
+name = "pg"
+params = { updates = 4, episodes = 5, rprop = "large" }
+choose = { rprop = ["small", "large"] }
+choose_seeds = 4
+[fitness]
+trials = 2
+[gp]
+population = 6
+generations = 2
+[validation]
+candidates = 3
+seeds = 6
+confirm_seeds = 6
+confirm_params = { updates = 8 }
+)");
+}
+
+class Said final : public service::EvolveProgress {
+ public:
+  void preparedRun(const std::string& text) override { said += text; }
+  std::string said;
+};
+
+TEST(LearnerChoice, CandidatesAreEveryCombinationInOrder) {
+  auto config = service::loadConfig(choosingConfig(), {"learner.choose.episodes=[3, 5]"});
+  const auto candidates = run::learnerCandidates(config);
+  ASSERT_EQ(candidates.size(), 4u);
+  EXPECT_EQ(candidates[0],
+            (std::map<std::string, std::string>{{"episodes", "3"}, {"rprop", "small"}}));
+  EXPECT_EQ(candidates[1],
+            (std::map<std::string, std::string>{{"episodes", "3"}, {"rprop", "large"}}));
+  EXPECT_EQ(candidates[3],
+            (std::map<std::string, std::string>{{"episodes", "5"}, {"rprop", "large"}}));
+}
+
+TEST(LearnerChoice, PicksTheBestMeanTheSameOnAnyThreads) {
+  const auto config = service::loadConfig(choosingConfig(), {});
+  run::ThreadTrialRunner one(1), two(2);
+  const auto a = run::chooseLearnerSettings(config, one);
+  const auto b = run::chooseLearnerSettings(config, two);
+  ASSERT_EQ(a.means.size(), 2u);
+  EXPECT_EQ(a.means, b.means);  // Bit for bit.
+  EXPECT_EQ(a.chosen, b.chosen);
+  EXPECT_NE(a.means[0], a.means[1]);  // The step sizes change what the learner does.
+  EXPECT_EQ(a.chosen, static_cast<std::size_t>(std::max_element(a.means.begin(), a.means.end()) -
+                                               a.means.begin()));
+  const auto chosen = run::withLearnerChoice(config, a);
+  EXPECT_TRUE(chosen.learnerChoices.empty());
+  EXPECT_EQ(chosen.learnerParams.at("rprop"), a.candidates[a.chosen].at("rprop"));
+  EXPECT_EQ(run::formatExperimentConfig(chosen).find("choose_seeds"), std::string::npos);
+  // Another seed draws other training seeds.
+  auto reseeded = config;
+  reseeded.seed = 4;
+  EXPECT_NE(run::chooseLearnerSettings(reseeded, one).means, a.means);
+}
+
+TEST(LearnerChoice, AConfigWithAChoiceReadsBackAsWritten) {
+  const auto config = service::loadConfig(choosingConfig(), {});
+  const auto text = run::formatExperimentConfig(config);
+  EXPECT_NE(text.find("choose_seeds = 4"), std::string::npos) << text;
+  const auto again = run::parseExperimentConfig(text, "written");
+  EXPECT_EQ(again.learnerChoices, config.learnerChoices);
+  EXPECT_EQ(again.choiceSeeds, 4);
+}
+
+TEST(LearnerChoice, ARunWritesTheChoiceAndAResumeKeepsIt) {
+  const auto dir = freshDir("choose-run");
+  service::EvolveRequest request;
+  request.config = choosingConfig();
+  request.out = {dir, false, "--out"};
+  request.threads = 2;
+  Said progress;
+  const std::atomic<bool> go{false};
+  ASSERT_TRUE(service::evolve(request, progress, go).finished);
+  const auto config = service::loadConfig(request.config, {});
+  run::ThreadTrialRunner threads(1);
+  const auto expected = run::chooseLearnerSettings(config, threads);
+  const auto rprop = expected.candidates[expected.chosen].at("rprop");
+  const auto written = run::loadExperimentConfig(dir + "/config.toml");
+  EXPECT_TRUE(written.learnerChoices.empty());
+  EXPECT_EQ(written.learnerParams.at("rprop"), rprop);
+  const auto runJson = nlohmann::json::parse(readText(dir + "/run.json"));
+  EXPECT_EQ(runJson.at("learner_choice").at("chosen").at("rprop").get<std::string>(), rprop);
+  EXPECT_EQ(runJson.at("learner_choice").at("tried").size(), 2u);
+  EXPECT_NE(progress.said.find("learner settings chosen on this task: rprop = " + rprop),
+            std::string::npos)
+      << progress.said;
+
+  // A resume checked against the choosing config is accepted (it stands for the choice made).
+  service::EvolveRequest resume;
+  resume.resume = dir;
+  resume.config = request.config;
+  resume.generations = 3;
+  service::EvolveProgress quiet;
+  EXPECT_TRUE(service::evolve(resume, quiet, go).finished);
+  EXPECT_EQ(run::loadExperimentConfig(dir + "/config.toml").learnerParams.at("rprop"), rprop);
+}
+
+TEST(LearnerChoice, AValueGivenReplacesTheChoice) {
+  service::EvolveRequest request;
+  request.config = choosingConfig();
+  request.overrides = {"learner.params.rprop=\"small\""};
+  request.out = {freshDir("choose-given"), false, "--out"};
+  request.threads = 1;
+  Said progress;
+  const std::atomic<bool> go{false};
+  ASSERT_TRUE(service::evolve(request, progress, go).finished);
+  EXPECT_EQ(progress.said.find("learner settings chosen"), std::string::npos) << progress.said;
+  const auto runJson = nlohmann::json::parse(readText(*request.out.dir + "/run.json"));
+  EXPECT_FALSE(runJson.contains("learner_choice"));
+  EXPECT_EQ(run::loadExperimentConfig(*request.out.dir + "/config.toml").learnerParams.at("rprop"),
+            "small");
+}
+
+TEST(LearnerChoice, AssessChoosesAsEvolveDoes) {
+  service::AssessRequest request;
+  request.config = choosingConfig();
+  request.raw = true;
+  request.runs = 2;
+  request.seed = 3;
+  request.threads = 1;
+  request.write = false;
+  std::string printed;
+  const auto result = service::assess(request, [&](const std::string& t) { printed += t; });
+  const auto config = service::loadConfig(request.config, {});
+  run::ThreadTrialRunner threads(2);
+  const auto expected = run::chooseLearnerSettings(config, threads);
+  EXPECT_TRUE(result.config.learnerChoices.empty());
+  EXPECT_EQ(result.config.learnerParams.at("rprop"),
+            expected.candidates[expected.chosen].at("rprop"));
+  EXPECT_NE(printed.find("learner settings chosen on this task"), std::string::npos) << printed;
+}
+
+TEST(LearnerChoice, BadChoicesAreErrorsNamingTheKey) {
+  const auto path = choosingConfig();
+  const auto refused = [&](const std::string& override) {
+    try {
+      run::validate(service::loadConfig(path, {override}));
+    } catch (const InputError& e) {
+      return std::string(e.where()) + ": " + e.what();
+    }
+    return std::string();
+  };
+  const auto unknown = refused("learner.choose.rpop=[\"small\"]");
+  EXPECT_NE(unknown.find("learner.choose.rpop"), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("did you mean 'rprop'"), std::string::npos) << unknown;
+  const auto value = refused("learner.choose.rprop=[\"large\", \"tiny\"]");
+  EXPECT_NE(value.find("learner.choose.rprop"), std::string::npos) << value;
+  EXPECT_NE(value.find("tiny"), std::string::npos) << value;
+  const auto empty = refused("learner.choose.rprop=[]");
+  EXPECT_NE(empty.find("must list at least one value"), std::string::npos) << empty;
+  const auto seeds = refused("learner.choose_seeds=1");
+  EXPECT_NE(seeds.find("learner.choose_seeds"), std::string::npos) << seeds;
+  const auto many = refused(
+      "learner.choose={ rprop = [\"large\", \"small\"], episodes = [1, 2, 3], updates = [1, 2, 3] "
+      "}");
+  EXPECT_NE(many.find("18 combinations"), std::string::npos) << many;
+}
+
+}  // namespace
+}  // namespace gpfd::testing
