@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <string_view>
 
 #include "gpfd/env/environment.hpp"
 #include "gpfd/gp/operator_registry.hpp"
@@ -380,10 +381,11 @@ void validateAt(const ExperimentConfig& c, const Place& place) {
              {{"learner.choose", &chosen}}, place("learner.choose", key), place);
     }
   }
-  require(learnerCandidates(c).size() <= kMaxLearnerChoices,
+  const std::size_t combinations = learnerCandidates(c).size();
+  require(combinations <= kMaxLearnerChoices,
           fmt::format("learner.choose lists {} combinations; at most {} (each costs "
                       "learner.choose_seeds trainings)",
-                      learnerCandidates(c).size(), kMaxLearnerChoices),
+                      combinations, kMaxLearnerChoices),
           place("learner", "choose"));
   // The assessment, validation and confirmation budgets, as LearningTask sees them.
   const std::vector<std::pair<const Params*, const char*>> budgets{
@@ -447,6 +449,13 @@ ExperimentConfig parseExperimentConfig(const std::string& text, const std::strin
   Reader visitor{reader, root};
   visit(visitor, config);
   reader.finish();
+  // A learner parameter an override sets (learner.params.KEY) replaces its choice from the text.
+  std::erase_if(config.learnerChoices, [&](const auto& choice) {
+    const std::string key = "learner.params." + choice.first;
+    return std::any_of(overrides.begin(), overrides.end(), [&](const std::string& o) {
+      return std::string_view(o).substr(0, o.find('=')) == key;
+    });
+  });
   // Plug-in paths relative to the config file's directory, stored absolute (for resumes).
   const std::filesystem::path base =
       std::filesystem::is_regular_file(source) ? std::filesystem::path(source).parent_path() : "";

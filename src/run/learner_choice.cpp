@@ -86,7 +86,7 @@ std::string learnerChoiceText(const LearnerChoice& choice) {
   }
   return fmt::format(
       "learner settings chosen on this task: {} (the original variables' mean score on {} fresh "
-      "seeds, trained as the {} trains: {}; {:.1f} s); written to config.toml\n",
+      "seeds, trained as the {} trains: {}; {:.2g} s); written to config.toml\n",
       settingsText(choice.candidates.at(choice.chosen)), choice.seeds,
       choice.confirmation ? "confirmation" : "validation", fmt::join(tried, "; "), choice.seconds);
 }

@@ -115,7 +115,6 @@ std::optional<run::ExperimentConfig> expectedConfig(const EvolveRequest& request
 run::ExperimentConfig chooseLearner(const run::ExperimentConfig& config,
                                     run::DiscoveryOptions& options, double& spent,
                                     EvolveProgress& progress) {
-  run::validate(config);
   run::ThreadTrialRunner threads(options.threads);
   run::TrialRunner& runner = options.trialRunner ? *options.trialRunner : threads;
   const auto choice = run::chooseLearnerSettings(config, runner);
@@ -225,10 +224,6 @@ EvolveResult evolve(const EvolveRequest& request, EvolveProgress& progress,
   // Sizes given (the generations, gp.population, gp.generations) replace a time budget that
   // comes from the config (user-env's default), unless the budget is given too.
   if (givesSizes(request) && !givesKey(overrides, "time_budget")) config.timeBudget = 0.0;
-  // A learner parameter given (learner.params.KEY) replaces its choice from the config.
-  std::erase_if(config.learnerChoices, [&](const auto& choice) {
-    return givesKey(overrides, "learner.params." + choice.first);
-  });
   const int runs = request.runs.value_or(1);
   double spent = 0.0;          // Seconds of the budget spent choosing the learner's settings.
   double perRunSeconds = 0.0;  // A time budget's share of each run.

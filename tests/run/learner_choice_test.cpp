@@ -125,6 +125,12 @@ TEST(LearnerChoice, ARunWritesTheChoiceAndAResumeKeepsIt) {
 }
 
 TEST(LearnerChoice, AValueGivenReplacesTheChoice) {
+  // Wherever a config is read (gpfd evolve, gpfd assess, Python), with its overrides.
+  EXPECT_TRUE(service::loadConfig(choosingConfig(), {"learner.params.rprop=\"small\""})
+                  .learnerChoices.empty());
+  EXPECT_EQ(
+      service::loadConfig(choosingConfig(), {"learner.params.episodes=3"}).learnerChoices.size(),
+      1u);
   service::EvolveRequest request;
   request.config = choosingConfig();
   request.overrides = {"learner.params.rprop=\"small\""};
