@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
+import gpfd
 from gpfd.planted import TASKS
 
 
@@ -17,13 +18,9 @@ def scaled(text: str, values: np.ndarray) -> str:
 
 def write_set(directory: Path, task: str, label: str, expressions: list[str]) -> Path:
     """A features file `label`.features for the planted task `task` (its name: "Energy")."""
-    t = TASKS[task]
+    names = [f"x{i}" for i in range(TASKS[task].variables)]
     path = directory / f"{label}.features"
-    names = ", ".join(f"x{i}" for i in range(t.variables))
-    path.write_text(
-        f"# gpfd features 1\n# env: {t.gym_id}\n# variables: {names}\n# format: infix\n"
-        + "".join(e + "\n" for e in expressions)
-    )
+    gpfd.FeatureSet.parse("".join(e + "\n" for e in expressions), variables=names).save(str(path))
     return path
 
 
