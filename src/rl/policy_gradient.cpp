@@ -159,7 +159,8 @@ std::vector<LearningCurve> trainPolicyGradientRuns(env::Environment& env,
       }
     }
     if (learners.tasks.empty()) break;
-    learners.play(true,
+    const bool sampling = !(config.greedyLastRow && update == config.updates);
+    learners.play(sampling,
                   [&](const episodes::Task& task, const episodes::Outcome& outcome, std::size_t i) {
                     RunState& run = *learners.runs[task.run];
                     run.curve.steps += outcome.steps;
@@ -171,7 +172,8 @@ std::vector<LearningCurve> trainPolicyGradientRuns(env::Environment& env,
                       return;
                     }
                     run.sum += outcome.undiscounted;
-                    run.estimator.addEpisode(learners.records.eligibility[i], outcome.discounted);
+                    if (sampling)
+                      run.estimator.addEpisode(learners.records.eligibility[i], outcome.discounted);
                     if (config.features.normalise) run.features.merge(learners.records.moments[i]);
                   });
     for (std::size_t k = 0; k < learners.runs.size(); ++k) {

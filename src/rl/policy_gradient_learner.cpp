@@ -66,6 +66,10 @@ const ParamTable<PolicyGradientConfig>& policyGradientParams() {
             "max_std", [](auto& c) -> auto& { return c.policy.maxStd; }, 1e-12, 1e6,
             "upper bound of a learned standard deviation")
         .flag(
+            "greedy_last", [](auto& c) -> auto& { return c.greedyLastRow; },
+            "the curve's last row plays the final weights without exploration (the mean action, "
+            "the most likely choice)")
+        .flag(
             "lockstep", [](auto& c) -> auto& { return c.lockstep; },
             "play an update's episodes side by side (false: one after another, the reference; "
             "the results are the same)");

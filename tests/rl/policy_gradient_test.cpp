@@ -182,6 +182,31 @@ TEST(PolicyGradient, SoftmaxLearnsTheCorridorAndEvaluatesGreedily) {
   EXPECT_DOUBLE_EQ(greedy.meanReturn, -3.0);  // Four steps right, the last one terminal (0).
 }
 
+// greedy_last changes the last row only: it is the final weights played without exploration,
+// which on the corridor (a fixed start) is the greedy evaluation's return exactly.
+TEST(PolicyGradient, GreedyLastRowPlaysTheFinalWeightsWithoutExploration) {
+  Corridor env(4, 40);
+  const features::RawFeatureMap raw(1);
+  PolicyGradientConfig sampled;
+  sampled.updates = 10;  // Still exploring: the sampled last row is not the greedy one.
+  PolicyGradientConfig greedy = sampled;
+  greedy.greedyLastRow = true;
+  Rng a(2), b(2);
+  const LearningCurve x = trainPolicyGradient(env, raw, sampled, a);
+  const LearningCurve y = trainPolicyGradient(env, raw, greedy, b);
+  ASSERT_FALSE(y.diverged);
+  ASSERT_EQ(x.points.size(), y.points.size());
+  for (std::size_t i = 0; i + 1 < x.points.size(); ++i) {
+    EXPECT_EQ(x.points[i].meanReturn, y.points[i].meanReturn) << i;
+    EXPECT_EQ(x.points[i].steps, y.points[i].steps) << i;
+  }
+  EXPECT_EQ(x.weights.values, y.weights.values);
+  EXPECT_NE(x.finalMeanReturn(), y.finalMeanReturn());
+  Rng c(3);
+  EXPECT_EQ(y.finalMeanReturn(),
+            evaluatePolicy(env, raw, y.weights, sampled, 5, true, c).meanReturn);
+}
+
 TEST(PolicyGradient, SameSeedSameCurve) {
   LinearBandit env(1.0, 0.0);
   const features::RawFeatureMap raw(1);

@@ -39,6 +39,10 @@ struct PolicyGradientConfig {
   // same results, given that an episode depends only on the parameters, the Rng that reset()
   // draws from and the actions (the Environment contract).
   bool lockstep = true;
+  // The curve's last row (the batch after the last update, which trains nothing) plays the final
+  // weights without exploration: the mean action, or the most likely choice. Its level is then
+  // the learned policy's own, free of the exploration noise that the other rows carry.
+  bool greedyLastRow = false;
   // Called with each row of the curve as soon as it is complete (progress output); may be empty.
   std::function<void(const CurvePoint&)> onPoint;
   // The same with the run's index (trainPolicyGradientRuns; 0 for a single run); may be empty.
