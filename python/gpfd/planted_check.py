@@ -65,11 +65,17 @@ def _random_actions(t: Task, rng: np.random.Generator, lanes: int) -> np.ndarray
     return rng.uniform(-1.0, 1.0, (lanes, 1))
 
 
-def r_squared(target: np.ndarray, phi: np.ndarray) -> float:
-    """R^2 of the least-squares fit of `target` (N,) on a constant and the columns of phi (N, k)."""
+def least_squares_fit(target: np.ndarray, phi: np.ndarray) -> np.ndarray:
+    """The fitted values (N,) of the least-squares fit of `target` (N,) on a constant and the
+    columns of phi (N, k); k may be 0."""
     design = np.column_stack([np.ones(len(target)), phi])
     coef, *_ = np.linalg.lstsq(design, target, rcond=None)
-    residual = target - design @ coef
+    return design @ coef
+
+
+def r_squared(target: np.ndarray, phi: np.ndarray) -> float:
+    """R^2 of the least-squares fit of `target` (N,) on a constant and the columns of phi (N, k)."""
+    residual = target - least_squares_fit(target, phi)
     total = float(np.sum((target - target.mean()) ** 2))
     if total == 0.0:
         raise ValueError("the needed feature is constant on the sampled states")

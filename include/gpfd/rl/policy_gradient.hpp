@@ -41,7 +41,8 @@ struct PolicyGradientConfig {
   bool lockstep = true;
   // The curve's last row (the batch after the last update, which trains nothing) plays the final
   // weights without exploration: the mean action, or the most likely choice. Its level is then
-  // the learned policy's own, free of the exploration noise that the other rows carry.
+  // the learned policy's own, free of the exploration noise that the other rows carry. A run that
+  // maxTotalSteps ends early ends on a sampled row.
   bool greedyLastRow = false;
   // Called with each row of the curve as soon as it is complete (progress output); may be empty.
   std::function<void(const CurvePoint&)> onPoint;
