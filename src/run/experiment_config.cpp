@@ -88,6 +88,7 @@ void visit(V& v, ExperimentConfig& c) {
   v.integer("validation", "seeds", c.validation.seeds, 2, 100000);
   v.integer("validation", "every", c.validation.every, 0, 1000000);
   v.params("validation.params", c.validation.params);
+  v.optionalMeasure("validation", "measure", c.validation.measure);
   v.integer("validation", "confirm_seeds", c.validation.confirmSeeds, 0, 100000);
   v.integer("validation", "confirm_looks", c.validation.confirmLooks, 1, kMaxLooks);
   v.params("validation.confirm_params", c.validation.confirmParams);
@@ -216,6 +217,13 @@ struct Reader {
     out = static_cast<TrialMeasure>(std::find(kMeasures.begin(), kMeasures.end(), name) -
                                     kMeasures.begin());
   }
+  // Left as it is where the key is absent.
+  void optionalMeasure(const char* s, const char* k, std::optional<TrialMeasure>& out) {
+    if (node(s, k) == nullptr) return;
+    TrialMeasure read = out.value_or(TrialMeasure::Mean);
+    measure(s, k, read);
+    out = read;
+  }
 };
 
 struct Writer {
@@ -256,6 +264,9 @@ struct Writer {
     w.write(s, "choose_seeds", static_cast<std::int64_t>(seeds));
   }
   void measure(const char* s, const char* k, TrialMeasure& v) { w.write(s, k, measureName(v)); }
+  void optionalMeasure(const char* s, const char* k, std::optional<TrialMeasure>& v) {
+    if (v) measure(s, k, *v);  // Configs without one keep their text.
+  }
 };
 
 }  // namespace

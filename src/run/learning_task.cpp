@@ -21,7 +21,10 @@ LearningTask::LearningTask(const ExperimentConfig& config, Budget budget)
       learnerParams_(config.learnerParams) {
   const std::map<std::string, std::string>* overrides = nullptr;
   if (budget == Budget::Assessment) overrides = &config.assessParams;
-  if (budget == Budget::Validation) overrides = &config.validation.params;
+  if (budget == Budget::Validation) {
+    overrides = &config.validation.params;
+    measure_ = config.validation.measure.value_or(config.measure);
+  }
   if (budget == Budget::Confirmation) {
     overrides = &config.validation.confirmParams;
     measure_ = config.validation.confirmMeasure;

@@ -145,6 +145,26 @@ TEST(ExperimentConfig, AnUnknownKeyGetsASuggestionOrTheKnownKeys) {
   }
 }
 
+// validation.measure: absent, validation scores a trial as GP does and the written config has no
+// such key (configs written before it keep their text); given, it scores validation trials only,
+// and is written and read back.
+TEST(ExperimentConfig, ValidationMeasureScoresValidationTrialsOnly) {
+  const std::string path = GPFD_SOURCE_DIR "/configs/cartpole-quick.toml";
+  rl::LearningCurve curve;
+  for (const double r : {1.0, 2.0, 6.0}) curve.points.push_back({0, 0, 0, r});
+  const auto plain = loadExperimentConfig(path);
+  EXPECT_FALSE(plain.validation.measure.has_value());
+  EXPECT_FALSE(has(formatExperimentConfig(plain), "\nmeasure = 'final'"));
+  EXPECT_EQ(LearningTask(plain, LearningTask::Budget::Validation).score(curve), 3.0);
+  const auto given = parseExperimentConfig(
+      formatExperimentConfig(loadExperimentConfig(path, {"validation.measure=final"})), "c.toml");
+  ASSERT_TRUE(given.validation.measure.has_value());
+  EXPECT_EQ(*given.validation.measure, TrialMeasure::Final);
+  EXPECT_EQ(LearningTask(given, LearningTask::Budget::Validation).score(curve), 6.0);
+  EXPECT_EQ(LearningTask(given, LearningTask::Budget::Trial).score(curve), 3.0);
+  EXPECT_TRUE(has(refusal("", {"validation.measure=best"}), "validation.measure"));
+}
+
 // The bug as reported: `evolve --seed` refused the seeds `evolve --runs` prints.
 TEST(ExperimentConfig, RejectingConstantGenomesNeedsDistinctOffspring) {
   const std::string path = GPFD_SOURCE_DIR "/configs/cartpole-quick.toml";

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -96,6 +97,8 @@ struct ExperimentConfig {
     int seeds = 30;
     int every = 0;  // Also validate the hall of fame every this many generations; 0: at the end.
     std::map<std::string, std::string> params;
+    // How a validation trial is scored; none: as the GP scores a trial (fitness.measure).
+    std::optional<TrialMeasure> measure;
     // Confirmation (docs/discovery.md): the validation winner and the original variables are
     // trained once more on confirmSeeds fresh seeds with learner.params overridden by
     // confirmParams, scored by confirmMeasure; the winner is returned only when it beats the

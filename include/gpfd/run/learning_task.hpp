@@ -48,8 +48,9 @@ class LearningTask {
   // learner can (rl::Learner::trainRuns): curve k is exactly train(map, rngs[k]). Thread-safe.
   std::vector<rl::LearningCurve> trainRuns(const features::FeatureMap& map,
                                            std::span<Rng> rngs) const;
-  // The trial's performance under the budget's measure (fitness.measure, or
-  // validation.confirm_measure for confirmation); -inf when the run diverged or is empty.
+  // The trial's performance under the budget's measure (fitness.measure; validation.measure,
+  // where given, for validation; validation.confirm_measure for confirmation); -inf when the run
+  // diverged or is empty.
   double score(const rl::LearningCurve& curve) const;
 
  private:
