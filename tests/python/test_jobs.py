@@ -3,6 +3,7 @@ sends the task again with it; the job kept, its environment unpickled once and r
 when it changes; the caches bounded; a round's results in order whatever the order of
 completion."""
 
+import threading
 import time
 from concurrent.futures import Executor, Future, ThreadPoolExecutor
 
@@ -89,18 +90,22 @@ def test_keys_differ_by_environment_and_config():
 
 class Forgetful(Executor):
     """Runs tasks on threads of this process; forgets every job before each task, as a worker
-    that has just joined would."""
+    that has just joined would. Forgetting and the task are one step: a task that forgot must not
+    find the job another thread's task installed in between (tasks run one at a time in a
+    worker anyway, under _jobs' lock)."""
 
     def __init__(self) -> None:
         self.pool = ThreadPoolExecutor(2)
         self.submitted = 0
+        self.one_at_a_time = threading.Lock()
 
     def submit(self, fn, /, *args, **kwargs) -> Future:
         self.submitted += 1
 
         def forget_then_run():
-            _jobs._jobs.clear()
-            return fn(*args, **kwargs)
+            with self.one_at_a_time:
+                _jobs._jobs.clear()
+                return fn(*args, **kwargs)
 
         return self.pool.submit(forget_then_run)
 
