@@ -264,9 +264,11 @@ def evolve(
         the generations and the validation to end within it, written to config.toml. The config
         ``user-env`` (the default for an environment stepped in Python) holds 3 minutes; sizes
         given (``population``, ``generations``, ``gp.population`` or ``gp.generations`` in
-        ``set``) replace a budget that comes from the config. ``user-env`` also chooses Rprop's
-        step sizes on the task before the run (``learner.choose``; docs/discovery.md), written
-        to config.toml; ``learner.params.rprop`` in ``set`` replaces the choice.
+        ``set``) replace a budget that comes from the config. ``user-env`` also chooses its
+        learner's steps on the task before the run, natural steps or Rprop's large or small
+        ones (``learner.choose``; docs/discovery.md), written to config.toml; a
+        ``learner.params`` value in ``set`` (``learner.params.step``) drops the alternatives
+        that set another.
     callback: called after each generation (once its checkpoint is written) with its statistics
         (generation, best, mean, median, mean_size, mean_features, evaluations, cache_hits,
         seconds, best_features); a true return value stops the run there.

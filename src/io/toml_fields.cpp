@@ -171,7 +171,27 @@ void TomlReader::readParams(const std::string& section, std::map<std::string, st
   if (node == nullptr) return;
   const toml::table* table = node->as_table();
   if (table == nullptr) fail("", section, "must be a table");
-  for (const auto& [k, v] : *table) {
+  paramsOf(*table, section, out);
+}
+
+bool TomlReader::readParamsArray(const std::string& section, const std::string& key,
+                                 std::vector<std::map<std::string, std::string>>& out) {
+  const toml::node* node = find(section, key);
+  if (node == nullptr || !node->is_array()) return false;
+  const std::string full = join(section, key);
+  std::vector<std::map<std::string, std::string>> tables;
+  for (const auto& element : *node->as_array()) {
+    const toml::table* table = element.as_table();
+    if (table == nullptr) fail(section, key, "must be a table or an array of tables");
+    paramsOf(*table, full + "[" + std::to_string(tables.size()) + "]", tables.emplace_back());
+  }
+  out = tables;
+  return true;
+}
+
+void TomlReader::paramsOf(const toml::table& table, const std::string& section,
+                          std::map<std::string, std::string>& out) {
+  for (const auto& [k, v] : table) {
     const std::string key(k.str());
     known_.insert(join(section, key));
     std::string text;
@@ -251,6 +271,16 @@ void TomlWriter::write(const std::string& section, const std::string& key,
                        const std::vector<std::string>& value) {
   toml::array array;
   for (const auto& v : value) array.push_back(v);
+  table(section).insert_or_assign(key, array);
+}
+void TomlWriter::write(const std::string& section, const std::string& key,
+                       const std::vector<std::map<std::string, std::string>>& tables) {
+  toml::array array;
+  for (const auto& params : tables) {
+    toml::table t;
+    for (const auto& [k, v] : params) t.insert_or_assign(k, v);
+    array.push_back(std::move(t));
+  }
   table(section).insert_or_assign(key, array);
 }
 void TomlWriter::writeParams(const std::string& section,

@@ -7,6 +7,7 @@
 
 #include "episode_players.hpp"
 #include "gpfd/rl/gradient_estimator.hpp"
+#include "gpfd/rl/natural_gradient.hpp"
 #include "gpfd/util/error.hpp"
 
 namespace gpfd::rl {
@@ -32,12 +33,14 @@ struct RunState {
         policy(env.actionSpace(), features.dim(), config.policy),
         rprop(config.rprop, policy.parameterCount()),
         estimator(policy.parameterCount(), config.optimalBaseline),
+        natural(config.step == StepRule::Natural ? policy.parameterCount() : 0),
         gradient(policy.parameterCount()) {}
 
   FeaturePipeline features;
   LinearPolicy policy;
   Rprop rprop;
   EpisodicGradientEstimator estimator;
+  NaturalGradientStep natural;  // Sized 0 unless StepRule::Natural.
   Eigen::VectorXd gradient;
   LearningCurve curve;
   std::uint64_t seed = 0;
@@ -111,14 +114,22 @@ void finishBatch(RunState& run, std::size_t index, int update, const PolicyGradi
     run.learning = false;
     return;
   }
-  run.estimator.gradient(run.gradient);
+  if (config.step == StepRule::Natural) {
+    run.natural.step(config.naturalKl, run.gradient);
+  } else {
+    run.estimator.gradient(run.gradient);
+  }
   if (!run.gradient.allFinite()) {
     curve.diverged = true;
     curve.divergedReason = "non-finite gradient estimate";
     run.learning = false;
     return;
   }
-  run.rprop.step(run.gradient, run.policy.parameters());
+  if (config.step == StepRule::Natural) {
+    run.policy.parameters() += run.gradient;
+  } else {
+    run.rprop.step(run.gradient, run.policy.parameters());
+  }
   run.policy.clampParameters();
   run.features.refresh(run.policy.parameters().data(), run.policy.outputs());
   if (!run.policy.parameters().allFinite()) {
@@ -153,6 +164,7 @@ std::vector<LearningCurve> trainPolicyGradientRuns(env::Environment& env,
       RunState& run = *learners.runs[k];
       if (!run.learning) continue;
       run.estimator.clear();
+      run.natural.clear();
       run.sum = 0.0;
       for (int e = 0; e < config.episodesPerUpdate; ++e) {
         learners.tasks.push_back({k, deriveSeed(run.seed, update, e)});
@@ -160,22 +172,25 @@ std::vector<LearningCurve> trainPolicyGradientRuns(env::Environment& env,
     }
     if (learners.tasks.empty()) break;
     const bool sampling = !(config.greedyLastRow && update == config.updates);
-    learners.play(sampling,
-                  [&](const episodes::Task& task, const episodes::Outcome& outcome, std::size_t i) {
-                    RunState& run = *learners.runs[task.run];
-                    run.curve.steps += outcome.steps;
-                    ++run.curve.episodes;
-                    if (!outcome.ok) {
-                      run.curve.diverged = true;
-                      run.curve.divergedReason =
-                          "non-finite state, feature, action, return or likelihood gradient";
-                      return;
-                    }
-                    run.sum += outcome.undiscounted;
-                    if (sampling)
-                      run.estimator.addEpisode(learners.records.eligibility[i], outcome.discounted);
-                    if (config.features.normalise) run.features.merge(learners.records.moments[i]);
-                  });
+    learners.play(sampling, [&](const episodes::Task& task, const episodes::Outcome& outcome,
+                                std::size_t i) {
+      RunState& run = *learners.runs[task.run];
+      run.curve.steps += outcome.steps;
+      ++run.curve.episodes;
+      if (!outcome.ok) {
+        run.curve.diverged = true;
+        run.curve.divergedReason =
+            "non-finite state, feature, action, return or likelihood gradient";
+        return;
+      }
+      run.sum += outcome.undiscounted;
+      if (sampling && config.step == StepRule::Natural) {
+        run.natural.addEpisode(learners.records.eligibility[i], outcome.discounted, outcome.steps);
+      } else if (sampling) {
+        run.estimator.addEpisode(learners.records.eligibility[i], outcome.discounted);
+      }
+      if (config.features.normalise) run.features.merge(learners.records.moments[i]);
+    });
     for (std::size_t k = 0; k < learners.runs.size(); ++k) {
       if (learners.runs[k]->learning) finishBatch(*learners.runs[k], k, update, config);
     }

@@ -25,6 +25,16 @@ const ParamTable<PolicyGradientConfig>& policyGradientParams() {
             "baseline", [](auto& c) -> auto& { return c.optimalBaseline; },
             std::vector<std::pair<std::string, bool>>{{"optimal", true}, {"none", false}},
             "optimal: Peters & Schaal's per-parameter baseline; none")
+        .choice(
+            "step", [](auto& c) -> auto& { return c.step; },
+            std::vector<std::pair<std::string, StepRule>>{{"rprop", StepRule::Rprop},
+                                                          {"natural", StepRule::Natural}},
+            "rprop: Rprop on the gradient's signs (the paper's); natural: the episodic natural "
+            "actor-critic's step, sized by kl (Peters & Schaal 2008)")
+        .real(
+            "kl", [](auto& c) -> auto& { return c.naturalKl; }, 1e-12, 100.0,
+            "step natural: the mean KL divergence per time step between the policies before and "
+            "after an update")
         .custom(
             "rprop", "large | small",
             "Rprop step sizes (min, initial, max): large = (0.01, 0.1, 0.5), small = (0.002, "
@@ -121,21 +131,22 @@ class PolicyGradientLearner final : public Learner {
 }  // namespace
 
 LearnerInfo policyGradientLearner() {
-  return {"pg",
-          "policy gradient with Rprop and the optimal baseline (Girgin & Preux, section 4)",
-          policyGradientParams().specs(),
-          [](const Params& p) {
-            return std::make_unique<PolicyGradientLearner>(policyGradientParams().read(p));
-          },
-          "actions that are a box of continuous values or one discrete choice",
-          [](env::Environment& env) {
-            const env::ActionSpace space = env.actionSpace();
-            const bool ok =
-                space.continuous() || (space.components == 1 && space.choices.front() >= 2);
-            return std::string(ok ? "" : "its actions are neither a box nor one discrete choice");
-          },
-          "updates",
-          "policy update"};
+  return {
+      "pg",
+      "policy gradient with Rprop and the optimal baseline (Girgin & Preux, section 4), or with "
+      "natural steps",
+      policyGradientParams().specs(),
+      [](const Params& p) {
+        return std::make_unique<PolicyGradientLearner>(policyGradientParams().read(p));
+      },
+      "actions that are a box of continuous values or one discrete choice",
+      [](env::Environment& env) {
+        const env::ActionSpace space = env.actionSpace();
+        const bool ok = space.continuous() || (space.components == 1 && space.choices.front() >= 2);
+        return std::string(ok ? "" : "its actions are neither a box nor one discrete choice");
+      },
+      "updates",
+      "policy update"};
 }
 
 }  // namespace gpfd::rl

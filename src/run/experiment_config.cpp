@@ -47,7 +47,7 @@ void visit(V& v, ExperimentConfig& c) {
   v.params("env.params", c.envParams);
   v.text("learner", "name", c.learner);
   v.params("learner.params", c.learnerParams);
-  v.choices("learner", c.learnerChoices, c.choiceSeeds);
+  v.choices("learner", c.learnerChoices, c.learnerAlternatives, c.choiceSeeds);
   v.integer("fitness", "trials", c.trials, 1, 1000);
   v.integer("fitness", "max_trials", c.maxTrials, 0, 100000);
   v.real("fitness", "reevaluation_share", c.reevaluationShare, 0.0, 1.0);
@@ -192,8 +192,15 @@ struct Reader {
   void boolean(const char* s, const char* k, bool& out) { r.read(s, k, out); }
   void params(const char* s, std::map<std::string, std::string>& out) { r.readParams(s, out); }
   // `s`.choose: a table of a value or an array of values per key (learner parameters' values
-  // hold no commas); `s`.choose_seeds.
-  void choices(const char* s, std::map<std::string, std::vector<std::string>>& out, int& seeds) {
+  // hold no commas), or an array of tables (alternatives); `s`.choose_seeds.
+  void choices(const char* s, std::map<std::string, std::vector<std::string>>& out,
+               std::vector<std::map<std::string, std::string>>& alternatives, int& seeds) {
+    r.read(s, "choose_seeds", seeds, 2, 100000);
+    if (r.readParamsArray(s, "choose", alternatives)) {
+      require(!alternatives.empty(), dotted(s, "choose") + " must list at least one alternative",
+              r.where(s, "choose"));
+      return;
+    }
     const std::string section = dotted(s, "choose");
     std::map<std::string, std::string> joined;
     r.readParams(section, joined);
@@ -209,7 +216,6 @@ struct Reader {
       }
       out[key] = values;
     }
-    r.read(s, "choose_seeds", seeds, 2, 100000);
   }
   void measure(const char* s, const char* k, TrialMeasure& out) {
     std::string name = measureName(out);
@@ -258,9 +264,12 @@ struct Writer {
   }
   void boolean(const char* s, const char* k, bool& v) { w.write(s, k, v); }
   void params(const char* s, std::map<std::string, std::string>& v) { w.writeParams(s, v); }
-  void choices(const char* s, std::map<std::string, std::vector<std::string>>& v, int& seeds) {
-    if (v.empty()) return;  // Configs without a choice (every resolved one) keep their text.
+  void choices(const char* s, std::map<std::string, std::vector<std::string>>& v,
+               std::vector<std::map<std::string, std::string>>& alternatives, int& seeds) {
+    // Configs without a choice (every resolved one) keep their text.
+    if (v.empty() && alternatives.empty()) return;
     for (const auto& [key, values] : v) w.write(dotted(s, "choose"), key, values);
+    if (!alternatives.empty()) w.write(s, "choose", alternatives);
     w.write(s, "choose_seeds", static_cast<std::int64_t>(seeds));
   }
   void measure(const char* s, const char* k, TrialMeasure& v) { w.write(s, k, measureName(v)); }
@@ -282,6 +291,13 @@ std::string plainPlace(const std::string& section, const std::string& key) {
 
 // Refuses a key of `params` that is not one of `names` (the parameters of `owner`), with a
 // suggestion, at the key's place in `section`.
+// Whether one of `overrides` (key=value) sets `key`.
+bool overridden(const std::vector<std::string>& overrides, const std::string& key) {
+  return std::any_of(overrides.begin(), overrides.end(), [&](const std::string& o) {
+    return std::string_view(o).substr(0, o.find('=')) == key;
+  });
+}
+
 void requireKnown(const Params& params, const std::vector<std::string>& names,
                   const std::string& owner, const std::string& section, const Place& place) {
   for (const auto& [key, value] : params) {
@@ -392,6 +408,20 @@ void validateAt(const ExperimentConfig& c, const Place& place) {
              {{"learner.choose", &chosen}}, place("learner.choose", key), place);
     }
   }
+  // Each alternative of learner.choose over learner.params.
+  require(c.learnerChoices.empty() || c.learnerAlternatives.empty(),
+          "learner.choose is either a table of values per parameter or an array of alternatives",
+          place("learner", "choose"));
+  for (std::size_t i = 0; i < c.learnerAlternatives.size(); ++i) {
+    const Params& alternative = c.learnerAlternatives[i];
+    const std::string section = "learner.choose[" + std::to_string(i) + "]";
+    requireKnown(alternative, learnerParamNames, "learner " + c.learner, section, place);
+    Params merged = c.learnerParams;
+    for (const auto& [key, value] : alternative) merged[key] = value;
+    makeAt([&] { return learners.make(c.learner, merged); }, c.learner,
+           {{section, &alternative}, {"learner.params", &c.learnerParams}},
+           place("learner", "choose"), place);
+  }
   const std::size_t combinations = learnerCandidates(c).size();
   require(combinations <= kMaxLearnerChoices,
           fmt::format("learner.choose lists {} combinations; at most {} (each costs "
@@ -460,13 +490,24 @@ ExperimentConfig parseExperimentConfig(const std::string& text, const std::strin
   Reader visitor{reader, root};
   visit(visitor, config);
   reader.finish();
-  // A learner parameter an override sets (learner.params.KEY) replaces its choice from the text.
+  // A learner parameter an override sets (learner.params.KEY) replaces its choice from the text,
+  // and drops the alternatives that set it to another value; a single one left is applied.
   std::erase_if(config.learnerChoices, [&](const auto& choice) {
-    const std::string key = "learner.params." + choice.first;
-    return std::any_of(overrides.begin(), overrides.end(), [&](const std::string& o) {
-      return std::string_view(o).substr(0, o.find('=')) == key;
+    return overridden(overrides, "learner.params." + choice.first);
+  });
+  std::erase_if(config.learnerAlternatives, [&](const Params& alternative) {
+    return std::any_of(alternative.begin(), alternative.end(), [&](const auto& setting) {
+      const auto given = config.learnerParams.find(setting.first);
+      return overridden(overrides, "learner.params." + setting.first) &&
+             given != config.learnerParams.end() && given->second != setting.second;
     });
   });
+  if (config.learnerAlternatives.size() == 1) {
+    for (const auto& [key, value] : config.learnerAlternatives.front()) {
+      if (!overridden(overrides, "learner.params." + key)) config.learnerParams[key] = value;
+    }
+    config.learnerAlternatives.clear();
+  }
   // Plug-in paths relative to the config file's directory, stored absolute (for resumes).
   const std::filesystem::path base =
       std::filesystem::is_regular_file(source) ? std::filesystem::path(source).parent_path() : "";

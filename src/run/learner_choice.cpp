@@ -24,7 +24,12 @@ std::string settingsText(const std::map<std::string, std::string>& settings) {
 
 }  // namespace
 
+bool choosesLearner(const ExperimentConfig& config) {
+  return !config.learnerChoices.empty() || !config.learnerAlternatives.empty();
+}
+
 std::vector<std::map<std::string, std::string>> learnerCandidates(const ExperimentConfig& config) {
+  if (!config.learnerAlternatives.empty()) return config.learnerAlternatives;
   std::vector<std::map<std::string, std::string>> combinations{{}};
   for (const auto& [key, values] : config.learnerChoices) {
     std::vector<std::map<std::string, std::string>> longer;
@@ -55,6 +60,7 @@ LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner&
   for (const auto& candidate : choice.candidates) {
     ExperimentConfig trained = config;
     trained.learnerChoices.clear();
+    trained.learnerAlternatives.clear();
     for (const auto& [key, value] : candidate) trained.learnerParams[key] = value;
     const LearningTask task(trained, budget);
     double sum = 0.0;
@@ -75,6 +81,7 @@ ExperimentConfig withLearnerChoice(ExperimentConfig config, const LearnerChoice&
     config.learnerParams[key] = value;
   }
   config.learnerChoices.clear();
+  config.learnerAlternatives.clear();
   return config;
 }
 

@@ -143,7 +143,7 @@ AssessResult assess(const AssessRequest& r, const TextSink& print) {
   // The learner's settings of learner.choose, chosen as gpfd evolve chooses them (the same
   // config and seed choose the same).
   std::optional<run::LearnerChoice> choice;
-  if (!config.learnerChoices.empty()) {
+  if (run::choosesLearner(config)) {
     choice = run::chooseLearnerSettings(config, runner);
     result.config = run::withLearnerChoice(config, *choice);
     if (print) print(run::learnerChoiceText(*choice));

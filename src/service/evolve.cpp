@@ -92,11 +92,14 @@ std::optional<run::ExperimentConfig> expectedConfig(const EvolveRequest& request
   const std::string stored = dir + "/config.toml";
   if (!fs::exists(stored)) return expected;
   const auto chosen = run::loadExperimentConfig(stored);
-  for (const auto& [key, values] : expected.learnerChoices) {
-    const auto value = chosen.learnerParams.find(key);
-    if (value != chosen.learnerParams.end()) expected.learnerParams[key] = value->second;
+  for (const auto& candidate : run::learnerCandidates(expected)) {
+    for (const auto& [key, ignored] : candidate) {
+      const auto value = chosen.learnerParams.find(key);
+      if (value != chosen.learnerParams.end()) expected.learnerParams[key] = value->second;
+    }
   }
   expected.learnerChoices.clear();
+  expected.learnerAlternatives.clear();
   if (expected.timeBudget > 0.0) {
     run::BudgetSizes sizes;
     sizes.population = chosen.gp.population;
@@ -227,7 +230,7 @@ EvolveResult evolve(const EvolveRequest& request, EvolveProgress& progress,
   const int runs = request.runs.value_or(1);
   double spent = 0.0;          // Seconds of the budget spent choosing the learner's settings.
   double perRunSeconds = 0.0;  // A time budget's share of each run.
-  if (!config.learnerChoices.empty()) config = chooseLearner(config, options, spent, progress);
+  if (run::choosesLearner(config)) config = chooseLearner(config, options, spent, progress);
   if (config.timeBudget > 0.0) {
     config = sizeToBudget(config, runs, spent, options, perRunSeconds, progress);
   }

@@ -181,13 +181,14 @@ def test_r_squared_of_a_constant_target_is_refused():
 @pytest.mark.parametrize(
     "env_id, chosen",
     [
-        ("gpfd/PlantedProduct-v0", "small"),  # The large steps harm the raw variables here,
-        ("CartPole-v1", "large"),  # and the small ones learn far less here.
+        # Rprop's large steps harm the raw variables here; natural steps with a learned std do not.
+        ("gpfd/PlantedProduct-v0", {"step": "natural", "updates": "30", "learn_std": "true"}),
+        ("CartPole-v1", {"rprop": "large"}),  # Natural and Rprop's small steps learn less here.
     ],
 )
-def test_user_env_chooses_the_learner_steps_on_the_task(tmp_path, env_id, chosen):
-    # user-env's learner.choose: the original variables trained with each of Rprop's step sizes
-    # before the run; the better one is written into config.toml, with no choice left.
+def test_user_env_chooses_the_learner_settings_on_the_task(tmp_path, env_id, chosen):
+    # user-env's learner.choose: the original variables trained with each alternative before the
+    # run; the best one is written into config.toml, with no choice left.
     out = tmp_path / "run"
     gpfd.evolve(
         env=env_id,
@@ -200,9 +201,12 @@ def test_user_env_chooses_the_learner_steps_on_the_task(tmp_path, env_id, chosen
         verbose=False,
     )  # Stopped after generation 0.
     config = tomllib.loads((out / "config.toml").read_text())
-    assert config["learner"]["params"]["rprop"] == chosen
+    for key, value in chosen.items():
+        assert str(config["learner"]["params"][key]).lower() == value, key
     assert "choose" not in config["learner"]
     info = json.loads((out / "run.json").read_text())["learner_choice"]
-    assert info["chosen"] == {"rprop": chosen}
-    means = {t["settings"]["rprop"]: t["mean"] for t in info["tried"]}
-    assert means[chosen] > means[{"large": "small", "small": "large"}[chosen]]
+    assert info["chosen"] == chosen
+    assert len(info["tried"]) == 3
+    best = max(info["tried"], key=lambda t: t["mean"])
+    assert best["settings"] == chosen
+    assert sorted(t["mean"] for t in info["tried"])[-2] < best["mean"]

@@ -165,16 +165,18 @@ TEST(LearnerChoice, AssessChoosesAsEvolveDoes) {
   EXPECT_NE(printed.find("learner settings chosen on this task"), std::string::npos) << printed;
 }
 
+// The error (where: what) that validating choosingConfig() with `overrides` raises; "" if none.
+std::string refusal(const std::vector<std::string>& overrides) {
+  try {
+    run::validate(service::loadConfig(choosingConfig(), overrides));
+  } catch (const InputError& e) {
+    return std::string(e.where()) + ": " + e.what();
+  }
+  return std::string();
+}
+
 TEST(LearnerChoice, BadChoicesAreErrorsNamingTheKey) {
-  const auto path = choosingConfig();
-  const auto refused = [&](const std::string& override) {
-    try {
-      run::validate(service::loadConfig(path, {override}));
-    } catch (const InputError& e) {
-      return std::string(e.where()) + ": " + e.what();
-    }
-    return std::string();
-  };
+  const auto refused = [](const std::string& override) { return refusal({override}); };
   const auto unknown = refused("learner.choose.rpop=[\"small\"]");
   EXPECT_NE(unknown.find("learner.choose.rpop"), std::string::npos) << unknown;
   EXPECT_NE(unknown.find("did you mean 'rprop'"), std::string::npos) << unknown;
@@ -189,6 +191,76 @@ TEST(LearnerChoice, BadChoicesAreErrorsNamingTheKey) {
       "learner.choose={ rprop = [\"large\", \"small\"], episodes = [1, 2, 3], updates = [1, 2, 3] "
       "}");
   EXPECT_NE(many.find("18 combinations"), std::string::npos) << many;
+}
+
+// learner.choose as alternatives: each a set of parameters over learner.params.
+const char* kAlternatives =
+    "learner.choose=[{ step = \"natural\", updates = 6, learn_std = true }, { rprop = \"small\" "
+    "}]";
+
+TEST(LearnerChoice, AlternativesAreTheCandidatesAsListedAndReadBackAsWritten) {
+  const auto config = service::loadConfig(choosingConfig(), {kAlternatives});
+  EXPECT_TRUE(config.learnerChoices.empty());
+  ASSERT_TRUE(run::choosesLearner(config));
+  const auto candidates = run::learnerCandidates(config);
+  ASSERT_EQ(candidates.size(), 2u);
+  EXPECT_EQ(candidates[0], (std::map<std::string, std::string>{
+                               {"learn_std", "true"}, {"step", "natural"}, {"updates", "6"}}));
+  EXPECT_EQ(candidates[1], (std::map<std::string, std::string>{{"rprop", "small"}}));
+  const auto again = run::parseExperimentConfig(run::formatExperimentConfig(config), "written");
+  EXPECT_EQ(again.learnerAlternatives, config.learnerAlternatives);
+  EXPECT_EQ(again.choiceSeeds, 4);
+}
+
+TEST(LearnerChoice, AnAlternativeChosenSetsAllItsParameters) {
+  const auto config = service::loadConfig(choosingConfig(), {kAlternatives});
+  run::ThreadTrialRunner one(1), two(2);
+  const auto a = run::chooseLearnerSettings(config, one);
+  ASSERT_EQ(a.means.size(), 2u);
+  EXPECT_EQ(a.means, run::chooseLearnerSettings(config, two).means);  // Bit for bit.
+  EXPECT_NE(a.means[0], a.means[1]);
+  const auto chosen = run::withLearnerChoice(config, a);
+  EXPECT_FALSE(run::choosesLearner(chosen));
+  for (const auto& [key, value] : a.candidates[a.chosen]) {
+    EXPECT_EQ(chosen.learnerParams.at(key), value) << key;
+  }
+  EXPECT_EQ(chosen.learnerParams.at("episodes"), "5");  // learner.params' own stay.
+}
+
+// A value given drops the alternatives that set it otherwise (those that do not set it stay); a
+// single one left is applied.
+TEST(LearnerChoice, AValueGivenDropsTheAlternativesItContradicts) {
+  const auto three =
+      std::string(kAlternatives)
+          .replace(std::string(kAlternatives).rfind(']'), 1, ", { rprop = \"large\" }]");
+  const auto large = service::loadConfig(choosingConfig(), {three, "learner.params.rprop=large"});
+  ASSERT_EQ(large.learnerAlternatives.size(), 2u);
+  EXPECT_EQ(large.learnerAlternatives[0].at("step"), "natural");
+  EXPECT_EQ(large.learnerAlternatives[1].at("rprop"), "large");
+  const auto rprop =
+      service::loadConfig(choosingConfig(), {kAlternatives, "learner.params.step=rprop"});
+  EXPECT_FALSE(run::choosesLearner(rprop));
+  EXPECT_EQ(rprop.learnerParams.at("rprop"), "small");
+  EXPECT_EQ(rprop.learnerParams.at("step"), "rprop");
+  EXPECT_EQ(rprop.learnerParams.at("updates"), "4");
+  const auto none = service::loadConfig(
+      choosingConfig(), {kAlternatives, "learner.params.updates=9", "learner.params.rprop=large"});
+  EXPECT_FALSE(run::choosesLearner(none));
+}
+
+TEST(LearnerChoice, BadAlternativesAreErrorsNamingTheKey) {
+  const auto refused = [](const std::string& override) {
+    return refusal({"learner.choose={}", override});
+  };
+  const auto unknown = refused("learner.choose=[{ rprop = \"small\" }, { stepp = \"natural\" }]");
+  EXPECT_NE(unknown.find("learner.choose[1].stepp"), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("did you mean 'step'"), std::string::npos) << unknown;
+  const auto value = refused("learner.choose=[{ step = \"natral\" }]");
+  EXPECT_NE(value.find("natral"), std::string::npos) << value;
+  const auto empty = refused("learner.choose=[]");
+  EXPECT_NE(empty.find("at least one alternative"), std::string::npos) << empty;
+  const auto notTables = refused("learner.choose=[1, 2]");
+  EXPECT_NE(notTables.find("array of tables"), std::string::npos) << notTables;
 }
 
 }  // namespace

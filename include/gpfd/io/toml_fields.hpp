@@ -34,6 +34,10 @@ class TomlReader {
   // A free-form table of scalars (environment or learner parameters) as text values; arrays
   // become comma-separated lists.
   void readParams(const std::string& section, std::map<std::string, std::string>& out);
+  // section.key as an array of such tables; false, reading nothing, where it is absent or not an
+  // array.
+  bool readParamsArray(const std::string& section, const std::string& key,
+                       std::vector<std::map<std::string, std::string>>& out);
   // Where `section.key` is (file:line:column), for errors raised later while validating it.
   std::string where(const std::string& section, const std::string& key) const;
 
@@ -42,6 +46,8 @@ class TomlReader {
 
  private:
   const toml::node* find(const std::string& section, const std::string& key);
+  void paramsOf(const toml::table& table, const std::string& section,
+                std::map<std::string, std::string>& out);
   [[noreturn]] void fail(const std::string& section, const std::string& key,
                          const std::string& what) const;
 
@@ -60,6 +66,9 @@ class TomlWriter {
   void write(const std::string& section, const std::string& key, const std::vector<double>& value);
   void write(const std::string& section, const std::string& key,
              const std::vector<std::string>& value);
+  // An array of tables of text values.
+  void write(const std::string& section, const std::string& key,
+             const std::vector<std::map<std::string, std::string>>& tables);
   void writeParams(const std::string& section, const std::map<std::string, std::string>& params);
   std::string text() const;
 

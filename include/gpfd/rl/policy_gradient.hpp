@@ -1,5 +1,7 @@
 // rl: policy gradient with Rprop (Girgin & Preux, section 4): a linear policy, the episodic
-// likelihood-ratio gradient with the optimal baseline, an Rprop step every few episodes.
+// likelihood-ratio gradient with the optimal baseline, an Rprop step every few episodes; or, in
+// place of Rprop, the episodic natural actor-critic's step of a fixed KL divergence
+// (natural_gradient.hpp).
 #pragma once
 
 #include <cstdint>
@@ -19,6 +21,10 @@
 
 namespace gpfd::rl {
 
+// How an update moves the weights: Rprop on the signs of the gradient (the paper's), or a step
+// along the natural gradient whose size is a KL divergence (natural_gradient.hpp).
+enum class StepRule { Rprop, Natural };
+
 struct PolicyGradientConfig {
   int updates = 100;           // Policy updates; the curve has updates + 1 rows.
   int episodesPerUpdate = 10;  // Paper: 10.
@@ -28,7 +34,9 @@ struct PolicyGradientConfig {
   std::int64_t maxTotalSteps = 0;
   double discount = 1.0;        // gamma for the return in the gradient (the curve is undiscounted).
   bool optimalBaseline = true;  // Peters & Schaal's baseline; false: no baseline.
+  StepRule step = StepRule::Rprop;
   RpropConfig rprop = RpropConfig::paperLarge();
+  double naturalKl = 0.01;  // StepRule::Natural: the mean KL divergence per step of an update.
   PolicyOptions policy;
   FeatureOptions features;
   // Each episode draws its start state and actions from its own stream, seeded from the run's

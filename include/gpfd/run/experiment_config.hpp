@@ -45,6 +45,10 @@ struct ExperimentConfig {
   // choiceSeeds fresh seeds (run/learner_choice.hpp), and stored in learnerParams; the resolved
   // config keeps no choice. Empty: learnerParams as given.
   std::map<std::string, std::vector<std::string>> learnerChoices;
+  // Or alternatives, each a set of learner parameters over learnerParams (`learner.choose` as an
+  // array of tables, e.g. [{ step = "natural", updates = 30 }, { rprop = "large" }]), chosen the
+  // same way. At most one of the two is given.
+  std::vector<std::map<std::string, std::string>> learnerAlternatives;
   int choiceSeeds = 10;
 
   int trials = 5;  // K short learning trials per fitness evaluation (the paper: 4-10).

@@ -1,12 +1,14 @@
-// run: the learner's settings chosen on the task before a run (`learner.choose`, user-env's
-// { rprop = ["large", "small"] }). The original variables are trained with each combination of
-// the candidate values on the same fresh seeds, with the confirmation's budget and measure (the
-// validation's without a confirmation); the combination with the best mean score becomes the
-// learner's settings for the whole run, GP's trials included. So the original variables, the
-// reference every verdict is against, are judged with the best of the candidate settings rather
-// than one that harms them on this task (docs/discovery.md, "The learner's settings chosen on the
-// task"). The choice is a pure function of the config and its seed; the resolved config stores
-// the values chosen and no choice, so a resume, or that config run again, gives the same run.
+// run: the learner's settings chosen on the task before a run (`learner.choose`: values per
+// parameter, { rprop = ["large", "small"] }, or alternatives, user-env's [{ step = "natural", ...
+// }, { rprop = "large" }, { rprop = "small" }]). The original variables are trained with each
+// candidate (a combination of the values, or an alternative) on the same fresh seeds, with the
+// confirmation's budget and measure (the validation's without a confirmation); the combination with
+// the best mean score becomes the learner's settings for the whole run, GP's trials included. So
+// the original variables, the reference every verdict is against, are judged with the best of the
+// candidate settings rather than one that harms them on this task (docs/discovery.md, "The
+// learner's settings chosen on the task"). The choice is a pure function of the config and its
+// seed; the resolved config stores the values chosen and no choice, so a resume, or that config run
+// again, gives the same run.
 #pragma once
 
 #include <map>
@@ -21,8 +23,12 @@ namespace gpfd::run {
 // The most combinations `learner.choose` may list (each costs choose_seeds trainings).
 inline constexpr std::size_t kMaxLearnerChoices = 16;
 
-// Every combination of learner.choose's values as learner settings, in order: keys
-// alphabetically, the last key's values varying fastest, each key's values as listed.
+// Whether the config has a learner.choose (values per parameter or alternatives).
+bool choosesLearner(const ExperimentConfig& config);
+
+// The alternatives of learner.choose as listed, or every combination of its values as learner
+// settings, in order: keys alphabetically, the last key's values varying fastest, each key's
+// values as listed.
 std::vector<std::map<std::string, std::string>> learnerCandidates(const ExperimentConfig& config);
 
 struct LearnerChoice {
