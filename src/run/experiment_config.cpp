@@ -495,6 +495,7 @@ ExperimentConfig parseExperimentConfig(const std::string& text, const std::strin
   std::erase_if(config.learnerChoices, [&](const auto& choice) {
     return overridden(overrides, "learner.params." + choice.first);
   });
+  const std::size_t alternatives = config.learnerAlternatives.size();
   std::erase_if(config.learnerAlternatives, [&](const Params& alternative) {
     return std::any_of(alternative.begin(), alternative.end(), [&](const auto& setting) {
       const auto given = config.learnerParams.find(setting.first);
@@ -502,7 +503,7 @@ ExperimentConfig parseExperimentConfig(const std::string& text, const std::strin
              given != config.learnerParams.end() && given->second != setting.second;
     });
   });
-  if (config.learnerAlternatives.size() == 1) {
+  if (config.learnerAlternatives.size() == 1 && alternatives > 1) {
     for (const auto& [key, value] : config.learnerAlternatives.front()) {
       if (!overridden(overrides, "learner.params." + key)) config.learnerParams[key] = value;
     }

@@ -257,6 +257,7 @@ TEST(LearnerChoice, BadAlternativesAreErrorsNamingTheKey) {
   EXPECT_NE(unknown.find("did you mean 'step'"), std::string::npos) << unknown;
   const auto value = refused("learner.choose=[{ step = \"natral\" }]");
   EXPECT_NE(value.find("natral"), std::string::npos) << value;
+  EXPECT_NE(value.find("learner.choose[0].step"), std::string::npos) << value;
   const auto empty = refused("learner.choose=[]");
   EXPECT_NE(empty.find("at least one alternative"), std::string::npos) << empty;
   const auto notTables = refused("learner.choose=[1, 2]");
