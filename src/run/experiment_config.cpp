@@ -47,7 +47,8 @@ void visit(V& v, ExperimentConfig& c) {
   v.params("env.params", c.envParams);
   v.text("learner", "name", c.learner);
   v.params("learner.params", c.learnerParams);
-  v.choices("learner", c.learnerChoices, c.learnerAlternatives, c.choiceSeeds);
+  v.choices("learner", c.learnerChoices, c.learnerAlternatives, c.choiceSeeds,
+            c.choiceSignificance);
   v.integer("fitness", "trials", c.trials, 1, 1000);
   v.integer("fitness", "max_trials", c.maxTrials, 0, 100000);
   v.real("fitness", "reevaluation_share", c.reevaluationShare, 0.0, 1.0);
@@ -194,8 +195,10 @@ struct Reader {
   // `s`.choose: a table of a value or an array of values per key (learner parameters' values
   // hold no commas), or an array of tables (alternatives); `s`.choose_seeds.
   void choices(const char* s, std::map<std::string, std::vector<std::string>>& out,
-               std::vector<std::map<std::string, std::string>>& alternatives, int& seeds) {
+               std::vector<std::map<std::string, std::string>>& alternatives, int& seeds,
+               double& significance) {
     r.read(s, "choose_seeds", seeds, 2, 100000);
+    r.read(s, "choose_significance", significance, 0.0, 0.5);
     if (r.readParamsArray(s, "choose", alternatives)) {
       require(!alternatives.empty(), dotted(s, "choose") + " must list at least one alternative",
               r.where(s, "choose"));
@@ -265,12 +268,14 @@ struct Writer {
   void boolean(const char* s, const char* k, bool& v) { w.write(s, k, v); }
   void params(const char* s, std::map<std::string, std::string>& v) { w.writeParams(s, v); }
   void choices(const char* s, std::map<std::string, std::vector<std::string>>& v,
-               std::vector<std::map<std::string, std::string>>& alternatives, int& seeds) {
+               std::vector<std::map<std::string, std::string>>& alternatives, int& seeds,
+               double& significance) {
     // Configs without a choice (every resolved one) keep their text.
     if (v.empty() && alternatives.empty()) return;
     for (const auto& [key, values] : v) w.write(dotted(s, "choose"), key, values);
     if (!alternatives.empty()) w.write(s, "choose", alternatives);
     w.write(s, "choose_seeds", static_cast<std::int64_t>(seeds));
+    if (significance > 0.0) w.write(s, "choose_significance", significance);
   }
   void measure(const char* s, const char* k, TrialMeasure& v) { w.write(s, k, measureName(v)); }
   void optionalMeasure(const char* s, const char* k, std::optional<TrialMeasure>& v) {

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "gpfd/run/learning_task.hpp"
+#include "gpfd/run/statistics.hpp"
 #include "gpfd/util/rng.hpp"
 
 namespace gpfd::run {
@@ -20,6 +21,19 @@ std::string settingsText(const std::map<std::string, std::string>& settings) {
   std::vector<std::string> parts;
   for (const auto& [key, value] : settings) parts.push_back(key + " = " + value);
   return fmt::format("{}", fmt::join(parts, ", "));
+}
+
+// The first candidate listed before the best whose scores the best's do not beat significantly
+// (the paired t-test over the same seeds, one-sided p >= choose_significance); the best if none.
+std::size_t earliestNotWorse(const LearnerChoice& choice, const ExperimentConfig& config) {
+  const std::vector<double>& best = choice.scores[choice.chosen];
+  for (std::size_t c = 0; c < choice.chosen; ++c) {
+    if (!std::isfinite(choice.means[c])) continue;
+    const PairedComparison paired = comparePaired(best, choice.scores[c]);
+    const double oneSided = paired.meanDifference > 0.0 ? paired.p / 2.0 : 1.0 - paired.p / 2.0;
+    if (oneSided >= config.choiceSignificance) return c;
+  }
+  return choice.chosen;
 }
 
 }  // namespace
@@ -65,13 +79,16 @@ LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner&
     const LearningTask task(trained, budget);
     double sum = 0.0;
     const auto curves = runner.run(task, batch, {});
-    for (const auto& curve : curves[0]) sum += task.score(curve);
+    std::vector<double>& scores = choice.scores.emplace_back();
+    for (const auto& curve : curves[0]) scores.push_back(task.score(curve));
+    for (const double score : scores) sum += score;
     choice.means.push_back(std::isnan(sum) ? -std::numeric_limits<double>::infinity()
                                            : sum / config.choiceSeeds);
   }
   for (std::size_t c = 1; c < choice.means.size(); ++c) {
     if (choice.means[c] > choice.means[choice.chosen]) choice.chosen = c;
   }
+  if (config.choiceSignificance > 0.0) choice.chosen = earliestNotWorse(choice, config);
   choice.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return choice;
 }

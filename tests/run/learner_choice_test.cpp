@@ -193,6 +193,29 @@ TEST(LearnerChoice, BadChoicesAreErrorsNamingTheKey) {
   EXPECT_NE(many.find("18 combinations"), std::string::npos) << many;
 }
 
+// learner.choose_significance: an earlier candidate is kept unless the best beats it clearly.
+TEST(LearnerChoice, ASignificanceKeepsAnEarlierCandidateUnlessTheBestIsClearlyBetter) {
+  run::ThreadTrialRunner threads(2);
+  auto config = service::loadConfig(choosingConfig(), {});
+  const auto plain = run::chooseLearnerSettings(config, threads);
+  ASSERT_EQ(plain.chosen, 1u) << "the test needs the second listed to have the best mean";
+  config.choiceSignificance = 1e-9;  // 4 seeds cannot show a difference this clearly.
+  const auto strict = run::chooseLearnerSettings(config, threads);
+  EXPECT_EQ(strict.means, plain.means);
+  EXPECT_EQ(strict.chosen, 0u);
+  // Natural steps of a KL of 1e-12 learn nothing: steps that learn beat them clearly.
+  auto frozen = service::loadConfig(
+      choosingConfig(), {"learner.choose=[{ step = \"natural\", kl = 1e-12 }, { rprop = "
+                         "\"large\" }]",
+                         "learner.choose_significance=0.05", "learner.choose_seeds=8",
+                         "validation.confirm_params={ updates = 20 }"});
+  const auto learns = run::chooseLearnerSettings(frozen, threads);
+  ASSERT_LT(learns.means[0], learns.means[1]);
+  EXPECT_EQ(learns.chosen, 1u) << learns.means[0] << " " << learns.means[1];
+  EXPECT_NE(run::formatExperimentConfig(frozen).find("choose_significance = 0.05"),
+            std::string::npos);
+}
+
 // learner.choose as alternatives: each a set of parameters over learner.params.
 const char* kAlternatives =
     "learner.choose=[{ step = \"natural\", updates = 6, learn_std = true }, { rprop = \"small\" "

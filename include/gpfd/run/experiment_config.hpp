@@ -50,6 +50,11 @@ struct ExperimentConfig {
   // same way. At most one of the two is given.
   std::vector<std::map<std::string, std::string>> learnerAlternatives;
   int choiceSeeds = 10;
+  // 0: the candidate with the best mean is chosen. Above 0: an earlier-listed candidate is kept
+  // unless the best trains the original variables significantly better on the same seeds (the
+  // paired t-test, one-sided p below this), so that cheaper settings listed first are kept where
+  // the dearer ones gain nothing measurable (`learner.choose_significance`).
+  double choiceSignificance = 0.0;
 
   int trials = 5;  // K short learning trials per fitness evaluation (the paper: 4-10).
   // Cap on the trials a genome accumulates: one met again gets K fresh trials until it has this

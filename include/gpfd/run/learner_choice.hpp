@@ -34,7 +34,10 @@ std::vector<std::map<std::string, std::string>> learnerCandidates(const Experime
 struct LearnerChoice {
   std::vector<std::map<std::string, std::string>> candidates;  // learnerCandidates(config).
   std::vector<double> means;  // The original variables' mean score with each (-inf: diverged).
-  std::size_t chosen = 0;     // The best mean; the first listed of equal ones.
+  std::vector<std::vector<double>> scores;  // Each one's score per seed.
+  // The best mean, the first listed of equal ones; with learner.choose_significance, the first
+  // listed that the best does not beat significantly.
+  std::size_t chosen = 0;
   int seeds = 0;
   bool confirmation = true;  // Trained as the confirmation trains (else as the validation).
   double seconds = 0.0;      // Wall time of the trainings.
