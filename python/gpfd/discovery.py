@@ -266,7 +266,8 @@ def evolve(
         given (``population``, ``generations``, ``gp.population`` or ``gp.generations`` in
         ``set``) replace a budget that comes from the config. ``user-env`` also chooses its
         learner's steps on the task before the run, natural steps or Rprop's large or small
-        ones (``learner.choose``; docs/discovery.md), written to config.toml; a
+        ones, by what each makes of the original variables and of 8 random feature sets
+        (``learner.choose``, ``choose_random_sets``; docs/discovery.md), written to config.toml; a
         ``learner.params`` value in ``set`` (``learner.params.step``) drops the alternatives
         that set another.
     callback: called after each generation (once its checkpoint is written) with its statistics

@@ -47,8 +47,8 @@ void visit(V& v, ExperimentConfig& c) {
   v.params("env.params", c.envParams);
   v.text("learner", "name", c.learner);
   v.params("learner.params", c.learnerParams);
-  v.choices("learner", c.learnerChoices, c.learnerAlternatives, c.choiceSeeds,
-            c.choiceSignificance);
+  v.choices("learner", c.learnerChoices, c.learnerAlternatives, c.choiceSeeds, c.choiceSignificance,
+            c.choiceRandomSets);
   v.integer("fitness", "trials", c.trials, 1, 1000);
   v.integer("fitness", "max_trials", c.maxTrials, 0, 100000);
   v.real("fitness", "reevaluation_share", c.reevaluationShare, 0.0, 1.0);
@@ -196,9 +196,10 @@ struct Reader {
   // hold no commas), or an array of tables (alternatives); `s`.choose_seeds.
   void choices(const char* s, std::map<std::string, std::vector<std::string>>& out,
                std::vector<std::map<std::string, std::string>>& alternatives, int& seeds,
-               double& significance) {
+               double& significance, int& randomSets) {
     r.read(s, "choose_seeds", seeds, 2, 100000);
     r.read(s, "choose_significance", significance, 0.0, 0.5);
+    r.read(s, "choose_random_sets", randomSets, 0, 1000);
     if (r.readParamsArray(s, "choose", alternatives)) {
       require(!alternatives.empty(), dotted(s, "choose") + " must list at least one alternative",
               r.where(s, "choose"));
@@ -269,13 +270,14 @@ struct Writer {
   void params(const char* s, std::map<std::string, std::string>& v) { w.writeParams(s, v); }
   void choices(const char* s, std::map<std::string, std::vector<std::string>>& v,
                std::vector<std::map<std::string, std::string>>& alternatives, int& seeds,
-               double& significance) {
+               double& significance, int& randomSets) {
     // Configs without a choice (every resolved one) keep their text.
     if (v.empty() && alternatives.empty()) return;
     for (const auto& [key, values] : v) w.write(dotted(s, "choose"), key, values);
     if (!alternatives.empty()) w.write(s, "choose", alternatives);
     w.write(s, "choose_seeds", static_cast<std::int64_t>(seeds));
     if (significance > 0.0) w.write(s, "choose_significance", significance);
+    if (randomSets > 0) w.write(s, "choose_random_sets", static_cast<std::int64_t>(randomSets));
   }
   void measure(const char* s, const char* k, TrialMeasure& v) { w.write(s, k, measureName(v)); }
   void optionalMeasure(const char* s, const char* k, std::optional<TrialMeasure>& v) {
@@ -427,6 +429,11 @@ void validateAt(const ExperimentConfig& c, const Place& place) {
            {{section, &alternative}, {"learner.params", &c.learnerParams}},
            place("learner", "choose"), place);
   }
+  // The significance test compares the original variables' scores per seed, which the random
+  // sets' best quarter may replace.
+  require(c.choiceSignificance == 0.0 || c.choiceRandomSets == 0,
+          "learner.choose_significance and learner.choose_random_sets cannot both be given",
+          place("learner", "choose_random_sets"));
   const std::size_t combinations = learnerCandidates(c).size();
   require(combinations <= kMaxLearnerChoices,
           fmt::format("learner.choose lists {} combinations; at most {} (each costs "

@@ -2,11 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
 
+#include "gpfd/gp/init.hpp"
 #include "gpfd/run/learning_task.hpp"
 #include "gpfd/run/statistics.hpp"
 #include "gpfd/util/rng.hpp"
@@ -14,8 +16,14 @@
 namespace gpfd::run {
 namespace {
 
-// The choice's seeds: a stream of their own, which no run draws from.
+// The choice's seeds: a stream of their own, which no run draws from; the random sets' draw and
+// training seeds, two more.
 constexpr std::uint64_t kChoiceStream = 0x4c4348;
+constexpr std::uint64_t kRandomSetsStream = 0x4c4352;
+constexpr std::uint64_t kRandomSetsSeedStream = 0x4c4353;
+// The seeds each random set of learner.choose_random_sets is trained on.
+constexpr int kRandomSetSeeds = 3;
+constexpr double kWorst = -std::numeric_limits<double>::infinity();
 
 std::string settingsText(const std::map<std::string, std::string>& settings) {
   std::vector<std::string> parts;
@@ -34,6 +42,45 @@ std::size_t earliestNotWorse(const LearnerChoice& choice, const ExperimentConfig
     if (oneSided >= config.choiceSignificance) return c;
   }
   return choice.chosen;
+}
+
+// learner.choose_random_sets random genomes as GP's generation 0 draws them, from the choice's
+// own stream: the same for every candidate.
+std::vector<expr::Genome> randomSets(const ExperimentConfig& config, std::size_t stateDim) {
+  Rng rng(deriveSeed(config.seed, kRandomSetsStream, 0));
+  const auto space = searchSpace(config, static_cast<int>(stateDim));
+  std::vector<expr::Genome> sets;
+  for (int i = 0; i < config.choiceRandomSets; ++i) sets.push_back(gp::randomGenome(rng, space));
+  return sets;
+}
+
+// The mean of the best quarter (at least one) of the random sets' mean scores under `task`;
+// -inf where a training diverged counts as the worst.
+double bestQuarterOfRandomSets(const LearningTask& task, const std::vector<expr::Genome>& genomes,
+                               TrialRunner& runner) {
+  TrialBatch batch;
+  std::vector<std::uint64_t> seeds;
+  for (int i = 0; i < kRandomSetSeeds; ++i) {
+    seeds.push_back(
+        deriveSeed(task.config().seed, kRandomSetsSeedStream, static_cast<std::uint64_t>(i)));
+  }
+  for (const auto& genome : genomes) {
+    batch.sets.push_back(
+        TrialFeatures::ofGenome(task.prepared(genome), task.config().withOriginal));
+    batch.seeds.push_back(seeds);
+  }
+  const auto curves = runner.run(task, batch, {});
+  std::vector<double> means;
+  for (const auto& runs : curves) {
+    double sum = 0.0;
+    for (const auto& curve : runs) sum += task.score(curve);
+    means.push_back(std::isnan(sum) ? kWorst : sum / static_cast<double>(runs.size()));
+  }
+  std::sort(means.begin(), means.end(), std::greater<>());
+  const std::size_t quarter = std::max<std::size_t>(1, means.size() / 4);
+  double sum = 0.0;
+  for (std::size_t i = 0; i < quarter; ++i) sum += means[i];
+  return sum / static_cast<double>(quarter);
 }
 
 }  // namespace
@@ -64,6 +111,7 @@ LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner&
   LearnerChoice choice;
   choice.candidates = learnerCandidates(config);
   choice.seeds = config.choiceSeeds;
+  choice.randomSets = config.choiceRandomSets;
   TrialBatch batch{{TrialFeatures::original()}, {{}}};
   for (int i = 0; i < config.choiceSeeds; ++i) {
     batch.seeds[0].push_back(deriveSeed(config.seed, kChoiceStream, static_cast<std::uint64_t>(i)));
@@ -71,6 +119,7 @@ LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner&
   choice.confirmation = config.validation.confirms();
   const auto budget =
       choice.confirmation ? LearningTask::Budget::Confirmation : LearningTask::Budget::Validation;
+  std::vector<expr::Genome> genomes;
   for (const auto& candidate : choice.candidates) {
     ExperimentConfig trained = config;
     trained.learnerChoices.clear();
@@ -82,11 +131,16 @@ LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner&
     std::vector<double>& scores = choice.scores.emplace_back();
     for (const auto& curve : curves[0]) scores.push_back(task.score(curve));
     for (const double score : scores) sum += score;
-    choice.means.push_back(std::isnan(sum) ? -std::numeric_limits<double>::infinity()
-                                           : sum / config.choiceSeeds);
+    choice.means.push_back(std::isnan(sum) ? kWorst : sum / config.choiceSeeds);
+    choice.merits.push_back(choice.means.back());
+    if (config.choiceRandomSets > 0) {
+      if (genomes.empty()) genomes = randomSets(config, task.stateDim());
+      choice.randomSetsBest.push_back(bestQuarterOfRandomSets(task, genomes, runner));
+      choice.merits.back() = std::max(choice.merits.back(), choice.randomSetsBest.back());
+    }
   }
-  for (std::size_t c = 1; c < choice.means.size(); ++c) {
-    if (choice.means[c] > choice.means[choice.chosen]) choice.chosen = c;
+  for (std::size_t c = 1; c < choice.merits.size(); ++c) {
+    if (choice.merits[c] > choice.merits[choice.chosen]) choice.chosen = c;
   }
   if (config.choiceSignificance > 0.0) choice.chosen = earliestNotWorse(choice, config);
   choice.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -104,23 +158,34 @@ ExperimentConfig withLearnerChoice(ExperimentConfig config, const LearnerChoice&
 
 std::string learnerChoiceText(const LearnerChoice& choice) {
   std::vector<std::string> tried;
+  const bool random = !choice.randomSetsBest.empty();
   for (std::size_t c = 0; c < choice.candidates.size(); ++c) {
-    tried.push_back(
-        fmt::format("{:.4g} with {}", choice.means[c], settingsText(choice.candidates[c])));
+    tried.push_back(fmt::format(
+        "{:.4g}{} with {}", choice.means[c],
+        random ? fmt::format(" (random sets {:.4g})", choice.randomSetsBest[c]) : std::string(),
+        settingsText(choice.candidates[c])));
   }
   return fmt::format(
       "learner settings chosen on this task: {} (the original variables' mean score on {} fresh "
-      "seeds, trained as the {} trains: {}; {:.2g} s); written to config.toml\n",
+      "seeds{}, trained as the {} trains: {}; {:.2g} s); written to config.toml\n",
       settingsText(choice.candidates.at(choice.chosen)), choice.seeds,
+      random ? fmt::format(", or the best quarter of {} random feature sets' on {} seeds if higher",
+                           choice.randomSets, kRandomSetSeeds)
+             : std::string(),
       choice.confirmation ? "confirmation" : "validation", fmt::join(tried, "; "), choice.seconds);
 }
 
 std::string learnerChoiceJson(const LearnerChoice& choice) {
   nlohmann::ordered_json tried = nlohmann::ordered_json::array();
   for (std::size_t c = 0; c < choice.candidates.size(); ++c) {
-    const double mean = choice.means[c];
-    tried.push_back({{"settings", choice.candidates[c]},
-                     {"mean", std::isfinite(mean) ? nlohmann::ordered_json(mean) : nullptr}});
+    const auto number = [](double value) {
+      return std::isfinite(value) ? nlohmann::ordered_json(value) : nullptr;
+    };
+    tried.push_back({{"settings", choice.candidates[c]}, {"mean", number(choice.means[c])}});
+    // Only with random sets, so that other choices keep run.json's bytes.
+    if (!choice.randomSetsBest.empty()) {
+      tried.back()["random_sets_best"] = number(choice.randomSetsBest[c]);
+    }
   }
   return nlohmann::ordered_json{{"seeds", choice.seeds},
                                 {"training", choice.confirmation ? "confirmation" : "validation"},

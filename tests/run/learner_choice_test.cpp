@@ -216,6 +216,75 @@ TEST(LearnerChoice, ASignificanceKeepsAnEarlierCandidateUnlessTheBestIsClearlyBe
             std::string::npos);
 }
 
+// A runner that trains nothing: each curve's one row is a score set by the task's settings
+// (learner.params.rprop): the original variables' score, or for set s of random genomes a
+// spread of s times a step.
+class ScriptedRunner final : public run::TrialRunner {
+ public:
+  struct Scores {
+    double original, randomStep;
+  };
+  std::map<std::string, Scores> byRprop;
+  std::vector<std::vector<rl::LearningCurve>> run(
+      const run::LearningTask& task, const run::TrialBatch& batch,
+      const std::function<void(std::size_t)>&) override {
+    const Scores scores = byRprop.at(task.config().learnerParams.at("rprop"));
+    std::vector<std::vector<rl::LearningCurve>> curves(batch.sets.size());
+    for (std::size_t s = 0; s < batch.sets.size(); ++s) {
+      const bool random = batch.sets[s].kind == run::TrialFeatures::Kind::Genome;
+      rl::LearningCurve curve;
+      curve.points.emplace_back();
+      curve.points.back().meanReturn =
+          random ? static_cast<double>(s) * scores.randomStep : scores.original;
+      curves[s].assign(batch.runs(), curve);
+    }
+    return curves;
+  }
+};
+
+// learner.choose_random_sets: the learner that makes the most of GP's random sets wins where
+// they beat the original variables, though it trains the original variables worse.
+TEST(LearnerChoice, RandomSetsScoreWhatTheLearnerMakesOfGPsFirstFeatures) {
+  ScriptedRunner runner;
+  // 8 random sets: the best quarter is sets 6 and 7, 6.5 steps on average.
+  runner.byRprop = {{"small", {10.0, 4.0}}, {"large", {12.0, 1.0}}};
+  const std::vector<std::string> final = {"validation.confirm_measure=\"final\""};
+  auto config = service::loadConfig(choosingConfig(), final);
+  const auto plain = run::chooseLearnerSettings(config, runner);
+  EXPECT_EQ(plain.candidates[plain.chosen].at("rprop"), "large");
+  EXPECT_TRUE(plain.randomSetsBest.empty());
+  EXPECT_EQ(run::learnerChoiceJson(plain).find("random_sets_best"), std::string::npos);
+  auto overrides = final;
+  overrides.push_back("learner.choose_random_sets=8");
+  config = service::loadConfig(choosingConfig(), overrides);
+  const auto random = run::chooseLearnerSettings(config, runner);
+  EXPECT_EQ(random.candidates[random.chosen].at("rprop"), "small");
+  EXPECT_EQ(random.means, plain.means);
+  EXPECT_EQ(random.randomSetsBest, (std::vector<double>{26.0, 6.5}));
+  EXPECT_EQ(random.merits, (std::vector<double>{26.0, 12.0}));  // The better of the two.
+  EXPECT_NE(run::learnerChoiceText(random).find("best quarter of 8 random feature sets"),
+            std::string::npos);
+  EXPECT_NE(run::learnerChoiceJson(random).find("\"random_sets_best\":26.0"), std::string::npos)
+      << run::learnerChoiceJson(random);
+  const auto again = run::parseExperimentConfig(run::formatExperimentConfig(config), "written");
+  EXPECT_EQ(again.choiceRandomSets, 8);
+  const auto both = refusal({"learner.choose_random_sets=8", "learner.choose_significance=0.05"});
+  EXPECT_NE(both.find("learner.choose_random_sets"), std::string::npos) << both;
+}
+
+// The random sets are drawn from the choice's stream: the same on any number of threads, and
+// trained on real learners they change nothing of the original variables' scores.
+TEST(LearnerChoice, RandomSetsAreTheSameOnAnyThreads) {
+  const auto config = service::loadConfig(choosingConfig(), {"learner.choose_random_sets=4"});
+  run::ThreadTrialRunner one(1), two(2);
+  const auto a = run::chooseLearnerSettings(config, one);
+  const auto b = run::chooseLearnerSettings(config, two);
+  EXPECT_EQ(a.randomSetsBest, b.randomSetsBest);  // Bit for bit.
+  EXPECT_EQ(a.chosen, b.chosen);
+  EXPECT_EQ(a.means,
+            run::chooseLearnerSettings(service::loadConfig(choosingConfig(), {}), one).means);
+}
+
 // learner.choose as alternatives: each a set of parameters over learner.params.
 const char* kAlternatives =
     "learner.choose=[{ step = \"natural\", updates = 6, learn_std = true }, { rprop = \"small\" "

@@ -55,6 +55,11 @@ struct ExperimentConfig {
   // paired t-test, one-sided p below this), so that cheaper settings listed first are kept where
   // the dearer ones gain nothing measurable (`learner.choose_significance`).
   double choiceSignificance = 0.0;
+  // Above 0: each candidate also trains this many random feature sets, drawn as GP's generation 0
+  // draws them (the same for every candidate), on a few seeds each, and scores the better of the
+  // original variables' mean and the mean of its best quarter of those sets: the learner that
+  // makes the most of the features GP starts from (`learner.choose_random_sets`).
+  int choiceRandomSets = 0;
 
   int trials = 5;  // K short learning trials per fitness evaluation (the paper: 4-10).
   // Cap on the trials a genome accumulates: one met again gets K fresh trials until it has this

@@ -3,9 +3,12 @@
 // }, { rprop = "large" }, { rprop = "small" }]). The original variables are trained with each
 // candidate (a combination of the values, or an alternative) on the same fresh seeds, with the
 // confirmation's budget and measure (the validation's without a confirmation); the combination with
-// the best mean score becomes the learner's settings for the whole run, GP's trials included. So
-// the original variables, the reference every verdict is against, are judged with the best of the
-// candidate settings rather than one that harms them on this task (docs/discovery.md, "The
+// the best mean score (or, with learner.choose_random_sets, the best quarter of random feature
+// sets as GP's generation 0 draws them where that is higher) becomes the learner's settings for the
+// whole run, GP's trials included. So the original variables, the reference every verdict is
+// against, are judged with the best of the candidate settings rather than one that harms them on
+// this task, and with random sets a learner that makes nothing of any feature (one that stops
+// exploring) is not chosen for what it does with the raw variables alone (docs/discovery.md, "The
 // learner's settings chosen on the task"). The choice is a pure function of the config and its
 // seed; the resolved config stores the values chosen and no choice, so a resume, or that config run
 // again, gives the same run.
@@ -35,6 +38,10 @@ struct LearnerChoice {
   std::vector<std::map<std::string, std::string>> candidates;  // learnerCandidates(config).
   std::vector<double> means;  // The original variables' mean score with each (-inf: diverged).
   std::vector<std::vector<double>> scores;  // Each one's score per seed.
+  // With learner.choose_random_sets: each one's mean of its best quarter of the random sets.
+  std::vector<double> randomSetsBest;
+  std::vector<double> merits;  // What the choice compares: the mean, or the random sets' if higher.
+  int randomSets = 0;
   // The best mean, the first listed of equal ones; with learner.choose_significance, the first
   // listed that the best does not beat significantly.
   std::size_t chosen = 0;
