@@ -248,13 +248,13 @@ TEST(LearnerChoice, RandomSetsScoreWhatTheLearnerMakesOfGPsFirstFeatures) {
   ScriptedRunner runner;
   // 8 random sets: the best quarter is sets 6 and 7, 6.5 steps on average.
   runner.byRprop = {{"small", {10.0, 4.0}}, {"large", {12.0, 1.0}}};
-  const std::vector<std::string> final = {"validation.confirm_measure=\"final\""};
-  auto config = service::loadConfig(choosingConfig(), final);
+  const std::vector<std::string> scoredByFinal = {"validation.confirm_measure=\"final\""};
+  auto config = service::loadConfig(choosingConfig(), scoredByFinal);
   const auto plain = run::chooseLearnerSettings(config, runner);
   EXPECT_EQ(plain.candidates[plain.chosen].at("rprop"), "large");
   EXPECT_TRUE(plain.randomSetsBest.empty());
   EXPECT_EQ(run::learnerChoiceJson(plain).find("random_sets_best"), std::string::npos);
-  auto overrides = final;
+  auto overrides = scoredByFinal;
   overrides.push_back("learner.choose_random_sets=8");
   config = service::loadConfig(choosingConfig(), overrides);
   const auto random = run::chooseLearnerSettings(config, runner);
