@@ -11,6 +11,7 @@
 
 #include "gpfd/gp/init.hpp"
 #include "gpfd/run/learning_task.hpp"
+#include "gpfd/run/redundancy.hpp"
 #include "gpfd/run/statistics.hpp"
 #include "gpfd/util/rng.hpp"
 
@@ -45,13 +46,28 @@ std::size_t earliestNotWorse(const LearnerChoice& choice, const ExperimentConfig
   return choice.chosen;
 }
 
-// learner.choose_random_sets random genomes as GP's generation 0 draws them, from the choice's
-// own stream: the same for every candidate.
-std::vector<expr::Genome> randomSets(const ExperimentConfig& config, std::size_t stateDim) {
+// learner.choose_random_sets random genomes as GP's generation 0 draws them (redundant features
+// dropped, constant genomes drawn again, as the run's Evolution does: run/discovery.cpp), from
+// the choice's own stream: the same for every candidate.
+std::vector<expr::Genome> randomSets(const ExperimentConfig& config, const LearningTask& task) {
   Rng rng(deriveSeed(config.seed, kRandomSetsStream, 0));
-  const auto space = searchSpace(config, static_cast<int>(stateDim));
+  const auto space = searchSpace(config, static_cast<int>(task.stateDim()));
+  const RedundancyFilter reduce(task.stateSample(), config.withOriginal, config.limits.minFeatures,
+                                config.redundantR2);
+  constexpr int kDrawsPerSet = 100;  // Then a constant genome is kept rather than none.
   std::vector<expr::Genome> sets;
-  for (int i = 0; i < config.choiceRandomSets; ++i) sets.push_back(gp::randomGenome(rng, space));
+  for (int i = 0; i < config.choiceRandomSets; ++i) {
+    expr::Genome genome;
+    for (int draw = 0; draw < kDrawsPerSet; ++draw) {
+      genome = gp::randomGenome(rng, space);
+      if (config.dropRedundant) genome = reduce(genome);
+      if (!config.rejectConstant || config.withOriginal ||
+          variesOnSample(genome, *task.stateSample())) {
+        break;
+      }
+    }
+    sets.push_back(std::move(genome));
+  }
   return sets;
 }
 
@@ -135,7 +151,7 @@ LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner&
     choice.means.push_back(std::isnan(sum) ? kWorst : sum / config.choiceSeeds);
     choice.merits.push_back(choice.means.back());
     if (config.choiceRandomSets > 0) {
-      if (genomes.empty()) genomes = randomSets(config, task.stateDim());
+      if (genomes.empty()) genomes = randomSets(config, task);
       choice.randomSetsBest.push_back(bestQuarterOfRandomSets(task, genomes, runner));
       choice.merits.back() = std::max(choice.merits.back(), choice.randomSetsBest.back());
     }
