@@ -26,18 +26,6 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-gp::GenomeReducer reducer(const ExperimentConfig& config, const LearningTask& task) {
-  if (!config.dropRedundant) return {};
-  return RedundancyFilter(task.stateSample(), config.withOriginal, config.limits.minFeatures,
-                          config.redundantR2);
-}
-
-gp::GenomeFilter admissible(const ExperimentConfig& config, const LearningTask& task) {
-  if (!config.rejectConstant || config.withOriginal) return {};
-  return
-      [sample = task.stateSample()](const expr::Genome& g) { return variesOnSample(g, *sample); };
-}
-
 std::vector<gp::Evaluator*> pointers(const std::vector<std::unique_ptr<gp::Evaluator>>& owned) {
   std::vector<gp::Evaluator*> out;
   for (const auto& e : owned) out.push_back(e.get());
@@ -93,7 +81,7 @@ struct Discovery::State {
         cache(*evaluator, c.trials, c.maxTrials,
               static_cast<int>(std::lround(c.reevaluationShare * c.gp.population))),
         evolution(gpConfig(c), searchSpace(c, static_cast<int>(task.stateDim())), cache,
-                  reducer(c, task), admissible(c, task), pointers(rungEvaluators)) {}
+                  genomeReducer(c, task), genomeAdmissible(c, task), pointers(rungEvaluators)) {}
 
   std::unique_ptr<gp::Evaluator> makeEvaluator() {
     if (options.makeEvaluator) {

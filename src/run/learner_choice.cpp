@@ -46,29 +46,33 @@ std::size_t earliestNotWorse(const LearnerChoice& choice, const ExperimentConfig
   return choice.chosen;
 }
 
-// learner.choose_random_sets random genomes as GP's generation 0 draws them (redundant features
-// dropped, constant genomes drawn again, as the run's Evolution does: run/discovery.cpp), from
-// the choice's own stream: the same for every candidate.
+// learner.choose_random_sets random genomes as GP's generation 0 draws them (reduced, constant
+// genomes drawn again, as the run's Evolution does), from the choice's own stream: the same for
+// every candidate.
 std::vector<expr::Genome> randomSets(const ExperimentConfig& config, const LearningTask& task) {
   Rng rng(deriveSeed(config.seed, kRandomSetsStream, 0));
   const auto space = searchSpace(config, static_cast<int>(task.stateDim()));
-  const RedundancyFilter reduce(task.stateSample(), config.withOriginal, config.limits.minFeatures,
-                                config.redundantR2);
+  const auto reduce = genomeReducer(config, task);
+  const auto admissible = genomeAdmissible(config, task);
   constexpr int kDrawsPerSet = 100;  // Then a constant genome is kept rather than none.
   std::vector<expr::Genome> sets;
   for (int i = 0; i < config.choiceRandomSets; ++i) {
     expr::Genome genome;
     for (int draw = 0; draw < kDrawsPerSet; ++draw) {
       genome = gp::randomGenome(rng, space);
-      if (config.dropRedundant) genome = reduce(genome);
-      if (!config.rejectConstant || config.withOriginal ||
-          variesOnSample(genome, *task.stateSample())) {
-        break;
-      }
+      if (reduce) genome = reduce(genome);
+      if (!admissible || admissible(genome)) break;
     }
     sets.push_back(std::move(genome));
   }
   return sets;
+}
+
+// The mean score of one set's curves under `task`; -inf where a training diverged.
+double meanScore(const LearningTask& task, const std::vector<rl::LearningCurve>& curves) {
+  double sum = 0.0;
+  for (const auto& curve : curves) sum += task.score(curve);
+  return std::isnan(sum) ? kWorst : sum / static_cast<double>(curves.size());
 }
 
 // The mean of the best quarter (at least one) of the random sets' mean scores under `task`;
@@ -88,11 +92,7 @@ double bestQuarterOfRandomSets(const LearningTask& task, const std::vector<expr:
   }
   const auto curves = runner.run(task, batch, {});
   std::vector<double> means;
-  for (const auto& runs : curves) {
-    double sum = 0.0;
-    for (const auto& curve : runs) sum += task.score(curve);
-    means.push_back(std::isnan(sum) ? kWorst : sum / static_cast<double>(runs.size()));
-  }
+  for (const auto& runs : curves) means.push_back(meanScore(task, runs));
   std::sort(means.begin(), means.end(), std::greater<>());
   const std::size_t quarter = std::max<std::size_t>(1, means.size() / 4);
   double sum = 0.0;

@@ -3,6 +3,9 @@
 #include <Eigen/Core>
 #include <cmath>
 
+#include "gpfd/run/experiment_config.hpp"
+#include "gpfd/run/learning_task.hpp"
+
 namespace gpfd::run {
 namespace {
 
@@ -128,6 +131,18 @@ expr::Genome normaliseFeatures(const expr::Genome& genome, const FeatureSample& 
     out.addFeature(tree);
   }
   return out;
+}
+
+gp::GenomeReducer genomeReducer(const ExperimentConfig& config, const LearningTask& task) {
+  if (!config.dropRedundant) return {};
+  return RedundancyFilter(task.stateSample(), config.withOriginal, config.limits.minFeatures,
+                          config.redundantR2);
+}
+
+gp::GenomeFilter genomeAdmissible(const ExperimentConfig& config, const LearningTask& task) {
+  if (!config.rejectConstant || config.withOriginal) return {};
+  return
+      [sample = task.stateSample()](const expr::Genome& g) { return variesOnSample(g, *sample); };
 }
 
 }  // namespace gpfd::run

@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "gpfd/expr/genome.hpp"
+#include "gpfd/gp/evolution.hpp"
 #include "gpfd/run/state_sample.hpp"
 
 namespace gpfd::run {
@@ -42,6 +43,14 @@ class RedundancyFilter {
 // reject_constant): beyond kDependenceTolerance of the span of the constant 1, non-finite values
 // counting as constant.
 bool variesOnSample(const expr::Genome& genome, const FeatureSample& sample);
+
+struct ExperimentConfig;
+class LearningTask;
+// What a run's Evolution applies to every new genome on `task`: genome.drop_redundant's
+// RedundancyFilter, and genome.reject_constant's variesOnSample (off beside the original
+// variables); empty where the config turns them off.
+gp::GenomeReducer genomeReducer(const ExperimentConfig& config, const LearningTask& task);
+gp::GenomeFilter genomeAdmissible(const ExperimentConfig& config, const LearningTask& task);
 
 // The placeholder: the constant 0 as a feature. Beside the original variables it stands for "no
 // feature": the learner's feature map leaves it out, and a set of placeholders alone is the
