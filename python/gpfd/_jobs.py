@@ -220,7 +220,9 @@ class Jobs:
                 if quiet is not None and time.monotonic() - last >= quiet:
                     # ... or, for the silence that makes a task lost, the last sent again.
                     last = self._send_lost(executor, out, sent_at, quiet, unsent, submit)
-                for future in done:
+                error: Exception | None = None
+                # In the tasks' order, so that results before a failed task are yielded first.
+                for future in sorted(done, key=lambda f: index.get(f, -1)):
                     if future not in index:  # Dropped: a copy of a task already answered.
                         continue
                     i, began = index[future], sent_at[future]
@@ -230,7 +232,8 @@ class Jobs:
                         value = future.result()
                     except Exception as e:
                         if not (silent and undelivered(e)):
-                            raise
+                            error = e
+                            break
                         failures[i] = failures.get(i, 0) + 1
                         silence = time.monotonic() - answered
                         self._unsent(executor, e, failures[i], copies, silence, quiet)
@@ -247,13 +250,15 @@ class Jobs:
                         other.cancel()
                         drop(other)
                 now = time.monotonic()
-                for i, when in sorted(unsent.items()):
+                for i, when in sorted(unsent.items()) if error is None else ():
                     if answered >= when or now >= when + RESEND_PAUSE:
                         del unsent[i]
                         submit(i, True)
                 while turn in results:
                     yield results.pop(turn)
                     turn += 1
+                if error is not None:
+                    raise error
         finally:
             self.cancel()
 

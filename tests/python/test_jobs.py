@@ -135,9 +135,23 @@ def test_a_task_error_is_raised_and_the_rest_cancelled():
             raise ValueError("task 1")
         return value
 
-    with ThreadPoolExecutor(1) as executor:
-        results = jobs.map(executor, fails, "t", [(i,) for i in range(50)], copies=1)
-        assert next(results) == 0
-        with pytest.raises(ValueError, match="task 1"):
-            next(results)
-    assert not jobs.pending
+    # Threads, and tasks all done before the first wait: task 0 comes out before task 1's error.
+    for executor in (ThreadPoolExecutor(1), AtOnce()):
+        with executor:
+            results = jobs.map(executor, fails, "t", [(i,) for i in range(50)], copies=1)
+            assert next(results) == 0
+            with pytest.raises(ValueError, match="task 1"):
+                next(results)
+        assert not jobs.pending
+
+
+class AtOnce(Executor):
+    """Runs each task as it is submitted: its future is done before map first waits."""
+
+    def submit(self, fn, /, *args, **kwargs) -> Future:
+        future: Future = Future()
+        try:
+            future.set_result(fn(*args, **kwargs))
+        except Exception as e:
+            future.set_exception(e)
+        return future
