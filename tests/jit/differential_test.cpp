@@ -7,6 +7,7 @@
 
 #include "gpfd/expr/eval.hpp"
 #include "gpfd/expr/features_file.hpp"
+#include "gpfd/gp/init.hpp"
 #include "gpfd/jit/compiled_feature_map.hpp"
 #include "gpfd/jit/fast_interpreter.hpp"
 #include "random_genomes.hpp"
@@ -135,6 +136,39 @@ TEST(DifferentialTrigPairs, SinAndCosOfOneValueAgreeBitForBit) {
     }
     expectAgreement(genome, states, text);
     if (::testing::Test::HasFatalFailure()) return;
+  }
+}
+
+// GP's own generation-0 genomes (the learner choice's random sets draw them too), one map after
+// another, both batch layouts on buffers of exactly their size, the two layouts agreeing: under
+// valgrind (scripts/valgrind-jit, --smc-check=all: docs/jit.md) no kernel may touch a byte past
+// them.
+TEST(DifferentialGpGenomes, BatchKernelsStayWithinBuffersOfTheirSize) {
+  for (const char* set : {"control", "arithmetic"}) {
+    for (int dim = 1; dim <= 3; ++dim) {
+      gp::SearchSpace space;
+      space.primitives = expr::PrimitiveSet::named(set);
+      space.variableCount = dim;
+      Rng rng(1234 + static_cast<std::uint64_t>(dim));
+      for (int g = 0; g < 800; ++g) {
+        const auto genome = gp::randomGenome(rng, space);
+        const CompiledFeatureMap compiled(genome, static_cast<std::size_t>(dim));
+        const std::size_t k = genome.featureCount(), d = static_cast<std::size_t>(dim);
+        for (const std::size_t n : {4, 8}) {
+          const std::vector<double> states(n * d, 0.5);  // Lane blocks and state rows alike.
+          std::vector<double> viaBlocks(n * k), viaRows(n * k);
+          compiled.evaluateLaneBlocks(states.data(), n / 4, viaBlocks.data());
+          compiled.evaluateBatch(states.data(), n, viaRows.data());
+          for (std::size_t l = 0; l < n; ++l) {
+            for (std::size_t j = 0; j < k; ++j) {
+              ASSERT_TRUE(
+                  sameBits(viaRows[l * k + j], testing::laneBlockValue(viaBlocks.data(), l, j, k)))
+                  << set << " genome " << g << " state " << l << " feature " << j;
+            }
+          }
+        }
+      }
+    }
   }
 }
 
