@@ -493,6 +493,24 @@ void validateAt(const ExperimentConfig& c, const Place& place) {
 
 }  // namespace
 
+void keepChoicesWith(ExperimentConfig& config, const Params& given) {
+  std::erase_if(config.learnerChoices,
+                [&](const auto& choice) { return given.contains(choice.first); });
+  const std::size_t alternatives = config.learnerAlternatives.size();
+  std::erase_if(config.learnerAlternatives, [&](const Params& alternative) {
+    return std::any_of(alternative.begin(), alternative.end(), [&](const auto& setting) {
+      const auto value = given.find(setting.first);
+      return value != given.end() && value->second != setting.second;
+    });
+  });
+  if (config.learnerAlternatives.size() == 1 && alternatives > 1) {
+    for (const auto& [key, value] : config.learnerAlternatives.front()) {
+      if (!given.contains(key)) config.learnerParams[key] = value;
+    }
+    config.learnerAlternatives.clear();
+  }
+}
+
 ExperimentConfig parseExperimentConfig(const std::string& text, const std::string& source,
                                        const std::vector<std::string>& overrides) {
   toml::table root = io::parseToml(text, source);
@@ -502,25 +520,12 @@ ExperimentConfig parseExperimentConfig(const std::string& text, const std::strin
   Reader visitor{reader, root};
   visit(visitor, config);
   reader.finish();
-  // A learner parameter an override sets (learner.params.KEY) replaces its choice from the text,
-  // and drops the alternatives that set it to another value; a single one left is applied.
-  std::erase_if(config.learnerChoices, [&](const auto& choice) {
-    return overridden(overrides, "learner.params." + choice.first);
-  });
-  const std::size_t alternatives = config.learnerAlternatives.size();
-  std::erase_if(config.learnerAlternatives, [&](const Params& alternative) {
-    return std::any_of(alternative.begin(), alternative.end(), [&](const auto& setting) {
-      const auto given = config.learnerParams.find(setting.first);
-      return overridden(overrides, "learner.params." + setting.first) &&
-             given != config.learnerParams.end() && given->second != setting.second;
-    });
-  });
-  if (config.learnerAlternatives.size() == 1 && alternatives > 1) {
-    for (const auto& [key, value] : config.learnerAlternatives.front()) {
-      if (!overridden(overrides, "learner.params." + key)) config.learnerParams[key] = value;
-    }
-    config.learnerAlternatives.clear();
+  // A learner parameter an override sets (learner.params.KEY) wins over its choice.
+  Params given;
+  for (const auto& [key, value] : config.learnerParams) {
+    if (overridden(overrides, "learner.params." + key)) given[key] = value;
   }
+  keepChoicesWith(config, given);
   // Plug-in paths relative to the config file's directory, stored absolute (for resumes).
   const std::filesystem::path base =
       std::filesystem::is_regular_file(source) ? std::filesystem::path(source).parent_path() : "";

@@ -41,10 +41,13 @@ run::ExperimentConfig assessConfig(const AssessRequest& r) {
   const auto routed = routeParams(r.params, env::Registry::global().info(config.env), "--param");
   for (const auto& [key, value] : routed.env) config.envParams[key] = value;
   for (const auto& [key, value] : routed.learner) config.assessParams[key] = value;
-  if (r.budget > 0) {
-    const auto& learner = rl::LearnerRegistry::global().info(config.learner);
-    config.assessParams[learner.budgetParam] = std::to_string(r.budget);
-  }
+  const auto& learner = rl::LearnerRegistry::global().info(config.learner);
+  // A learner setting given wins over its choice, as an override does in gpfd evolve; the
+  // budget is the assessment's length, never a choice's.
+  Params given = routed.learner;
+  given.erase(learner.budgetParam);
+  run::keepChoicesWith(config, given);
+  if (r.budget > 0) config.assessParams[learner.budgetParam] = std::to_string(r.budget);
   if (r.runs > 0) config.assessRuns = r.runs;
   config.seed = r.seed;
   run::validate(config);

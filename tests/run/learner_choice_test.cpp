@@ -146,7 +146,8 @@ TEST(LearnerChoice, AValueGivenReplacesTheChoice) {
             "small");
 }
 
-TEST(LearnerChoice, AssessChoosesAsEvolveDoes) {
+// gpfd assess on choosingConfig(): the original variables, 2 runs, nothing written.
+service::AssessRequest rawAssessment() {
   service::AssessRequest request;
   request.config = choosingConfig();
   request.raw = true;
@@ -154,6 +155,11 @@ TEST(LearnerChoice, AssessChoosesAsEvolveDoes) {
   request.seed = 3;
   request.threads = 1;
   request.write = false;
+  return request;
+}
+
+TEST(LearnerChoice, AssessChoosesAsEvolveDoes) {
+  const auto request = rawAssessment();
   std::string printed;
   const auto result = service::assess(request, [&](const std::string& t) { printed += t; });
   const auto config = service::loadConfig(request.config, {});
@@ -354,6 +360,26 @@ TEST(LearnerChoice, BadAlternativesAreErrorsNamingTheKey) {
   EXPECT_NE(empty.find("at least one alternative"), std::string::npos) << empty;
   const auto notTables = refused("learner.choose=[1, 2]");
   EXPECT_NE(notTables.find("array of tables"), std::string::npos) << notTables;
+}
+
+// gpfd assess's --param, like gpfd evolve's override, wins over the choice; its --budget does not
+// count as a value given (the assessment's length, never a choice's).
+TEST(LearnerChoice, AnAssessmentsParamsWinOverTheChoice) {
+  auto request = rawAssessment();
+  request.budget = 2;
+  request.params = {"rprop=small"};
+  std::string printed;
+  auto result = service::assess(request, [&](const std::string& t) { printed += t; });
+  EXPECT_FALSE(run::choosesLearner(result.config));
+  EXPECT_EQ(printed.find("learner settings chosen"), std::string::npos) << printed;
+  // Alternatives: the one the given step leaves is applied whole, the budget aside.
+  request.overrides = {kAlternatives};
+  request.params = {"step=rprop"};
+  printed.clear();
+  result = service::assess(request, [&](const std::string& t) { printed += t; });
+  EXPECT_EQ(printed.find("learner settings chosen"), std::string::npos) << printed;
+  EXPECT_EQ(result.config.learnerParams.at("rprop"), "small");
+  EXPECT_EQ(result.config.assessParams.at("updates"), "2");
 }
 
 }  // namespace

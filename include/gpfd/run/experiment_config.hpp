@@ -145,6 +145,10 @@ ExperimentConfig parseExperimentConfig(const std::string& text, const std::strin
                                        const std::vector<std::string>& overrides = {});
 ExperimentConfig loadExperimentConfig(const std::string& path,
                                       const std::vector<std::string>& overrides = {});
+// The learner's choice where values are given (an override's learner.params.KEY, an assessment's
+// --param): a given key's choice is dropped, and so are the alternatives that set it to another
+// value; a single alternative left (of several) goes into learnerParams, except its given keys.
+void keepChoicesWith(ExperimentConfig& config, const std::map<std::string, std::string>& given);
 // The fully resolved config as TOML (every field, defaults included); parsing it gives the same
 // config back.
 std::string formatExperimentConfig(const ExperimentConfig& config);
