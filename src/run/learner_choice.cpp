@@ -68,11 +68,19 @@ std::vector<expr::Genome> randomSets(const ExperimentConfig& config, const Learn
   return sets;
 }
 
-// The mean score of one set's curves under `task`; -inf where a training diverged.
-double meanScore(const LearningTask& task, const std::vector<rl::LearningCurve>& curves) {
+// Each curve's score under `task`.
+std::vector<double> scoresOf(const LearningTask& task,
+                             const std::vector<rl::LearningCurve>& curves) {
+  std::vector<double> scores;
+  for (const auto& curve : curves) scores.push_back(task.score(curve));
+  return scores;
+}
+
+// The mean of `scores`; -inf where a training diverged (a NaN score).
+double meanOrWorst(const std::vector<double>& scores) {
   double sum = 0.0;
-  for (const auto& curve : curves) sum += task.score(curve);
-  return std::isnan(sum) ? kWorst : sum / static_cast<double>(curves.size());
+  for (const double score : scores) sum += score;
+  return std::isnan(sum) ? kWorst : sum / static_cast<double>(scores.size());
 }
 
 // The mean of the best quarter (at least one) of the random sets' mean scores under `task`;
@@ -92,7 +100,7 @@ double bestQuarterOfRandomSets(const LearningTask& task, const std::vector<expr:
   }
   const auto curves = runner.run(task, batch, {});
   std::vector<double> means;
-  for (const auto& runs : curves) means.push_back(meanScore(task, runs));
+  for (const auto& runs : curves) means.push_back(meanOrWorst(scoresOf(task, runs)));
   std::sort(means.begin(), means.end(), std::greater<>());
   const std::size_t quarter = std::max<std::size_t>(1, means.size() / 4);
   double sum = 0.0;
@@ -143,12 +151,9 @@ LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner&
     trained.learnerAlternatives.clear();
     for (const auto& [key, value] : candidate) trained.learnerParams[key] = value;
     const LearningTask task(trained, budget);
-    double sum = 0.0;
     const auto curves = runner.run(task, batch, {});
-    std::vector<double>& scores = choice.scores.emplace_back();
-    for (const auto& curve : curves[0]) scores.push_back(task.score(curve));
-    for (const double score : scores) sum += score;
-    choice.means.push_back(std::isnan(sum) ? kWorst : sum / config.choiceSeeds);
+    choice.scores.push_back(scoresOf(task, curves[0]));
+    choice.means.push_back(meanOrWorst(choice.scores.back()));
     choice.merits.push_back(choice.means.back());
     if (config.choiceRandomSets > 0) {
       if (genomes.empty()) genomes = randomSets(config, task);
