@@ -81,7 +81,9 @@ struct Discovery::State {
         cache(*evaluator, c.trials, c.maxTrials,
               static_cast<int>(std::lround(c.reevaluationShare * c.gp.population))),
         evolution(gpConfig(c), searchSpace(c, static_cast<int>(task.stateDim())), cache,
-                  genomeReducer(c, task), genomeAdmissible(c, task), pointers(rungEvaluators)) {}
+                  genomeReducer(c, task), genomeAdmissible(c, task), pointers(rungEvaluators)) {
+    validation.parsimonySe = c.validation.parsimonySe;
+  }
 
   std::unique_ptr<gp::Evaluator> makeEvaluator() {
     if (options.makeEvaluator) {
@@ -241,7 +243,7 @@ struct Discovery::State {
     validation.confirmation = {};
     if (!config.validation.confirms()) return;
     const auto start = std::chrono::steady_clock::now();
-    const auto& winner = validation.sets[chooseWinner(validation.sets, dim())];
+    const auto& winner = validation.sets[chooseWinner(validation, dim())];
     std::vector<const expr::Genome*> genomes{nullptr};  // The original variables first.
     if (!winner.isOriginal()) genomes.push_back(&winner.genome);
     auto& confirmation = validation.confirmation;
@@ -383,6 +385,7 @@ std::unique_ptr<Discovery> Discovery::resume(const DiscoveryOptions& options,
   state->cache.setEntries(std::move(checkpoint.cache));
   state->history = std::move(checkpoint.history);
   state->validation = std::move(checkpoint.validation);
+  state->validation.parsimonySe = config.validation.parsimonySe;
   return std::unique_ptr<Discovery>(new Discovery(std::move(state)));
 }
 
@@ -400,7 +403,7 @@ void Discovery::run(const std::function<void(const GenerationRecord&)>& onGenera
     if (s_->validating() && every > 0 && (stats.generation + 1) % every == 0 &&
         !s_->generationsDone()) {
       s_->validateHallOfFame();
-      s_->writeValidationCsv(chooseWinner(s_->validation.sets, s_->dim()));
+      s_->writeValidationCsv(chooseWinner(s_->validation, s_->dim()));
       s_->writeCheckpoint();
     }
   }

@@ -94,6 +94,7 @@ void visit(V& v, ExperimentConfig& c) {
   v.integer("validation", "confirm_looks", c.validation.confirmLooks, 1, kMaxLooks);
   v.params("validation.confirm_params", c.validation.confirmParams);
   v.measure("validation", "confirm_measure", c.validation.confirmMeasure);
+  v.real("validation", "parsimony_se", c.validation.parsimonySe, 0.0, 100.0);
   v.integer("assess", "runs", c.assessRuns, 1, 100000);
   v.params("assess.params", c.assessParams);
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <set>
 
 #include "gpfd/expr/print.hpp"
 #include "gpfd/run/redundancy.hpp"
@@ -157,8 +158,57 @@ std::size_t originalIndex(const std::vector<ValidatedSet>& sets) {
   throw std::logic_error("validation without the original variables");
 }
 
-std::size_t chooseWinner(const std::vector<ValidatedSet>& sets, std::size_t stateDim) {
-  return ranking(sets, stateDim).front();
+namespace {
+
+// The canonical keys of a genome's features, each simplified on its own (a feature's key inside
+// a genome's may order commutative operands differently).
+std::set<std::string> featureKeys(const expr::Genome& genome) {
+  std::set<std::string> keys;
+  for (std::size_t k = 0; k < genome.featureCount(); ++k) {
+    expr::Genome feature;
+    feature.addFeature(genome.feature(k));
+    keys.insert(gp::canonicalKey(feature));
+  }
+  return keys;
+}
+
+// Whether discovered set `part` is made of some, not all, of discovered set `whole`'s features.
+bool isProperPart(const ValidatedSet& part, const ValidatedSet& whole) {
+  const auto partFeatures = featureKeys(part.genome);
+  const auto wholeFeatures = featureKeys(whole.genome);
+  return partFeatures.size() < wholeFeatures.size() &&
+         std::includes(wholeFeatures.begin(), wholeFeatures.end(), partFeatures.begin(),
+                       partFeatures.end());
+}
+
+// Whether `a` is simpler than `b`: fewer features, then fewer nodes, then the better mean.
+bool simpler(const ValidatedSet& a, const ValidatedSet& b) {
+  if (a.genome.featureCount() != b.genome.featureCount()) {
+    return a.genome.featureCount() < b.genome.featureCount();
+  }
+  if (a.genome.size() != b.genome.size()) return a.genome.size() < b.genome.size();
+  return a.summary().mean > b.summary().mean;
+}
+
+}  // namespace
+
+std::size_t chooseWinner(const std::vector<ValidatedSet>& sets, std::size_t stateDim,
+                         double parsimonySe) {
+  const std::size_t best = ranking(sets, stateDim).front();
+  if (parsimonySe <= 0.0 || sets[best].isOriginal()) return best;
+  const Summary summary = sets[best].summary();
+  const double floor = summary.mean - parsimonySe * summary.standardError();
+  std::size_t chosen = best;
+  for (std::size_t i = 0; i < sets.size(); ++i) {
+    const auto& set = sets[i];
+    if (set.isOriginal() || !(set.summary().mean >= floor)) continue;
+    if (isProperPart(set, sets[best]) && simpler(set, sets[chosen])) chosen = i;
+  }
+  return chosen;
+}
+
+std::size_t chooseWinner(const ValidationState& state, std::size_t stateDim) {
+  return chooseWinner(state.sets, stateDim, state.parsimonySe);
 }
 
 namespace {
@@ -167,13 +217,13 @@ namespace {
 // finished validates more sets, and its old confirmation no longer applies until redone).
 bool confirmsWinner(const ValidationState& state, std::size_t stateDim) {
   return state.confirmation.done() &&
-         state.confirmation.key == state.sets[chooseWinner(state.sets, stateDim)].key;
+         state.confirmation.key == state.sets[chooseWinner(state, stateDim)].key;
 }
 
 }  // namespace
 
 std::size_t returnedIndex(const ValidationState& state, std::size_t stateDim) {
-  const std::size_t winner = chooseWinner(state.sets, stateDim);
+  const std::size_t winner = chooseWinner(state, stateDim);
   if (state.sets[winner].isOriginal()) return winner;
   const auto& confirmation = state.confirmation;
   const bool holds = confirmsWinner(state, stateDim)
@@ -201,7 +251,7 @@ NoLearningVerdict noLearningVerdict(const ValidationState& state, std::size_t st
   v.noLearning = summarize(*reported.noLearning);
   v.original = comparePaired(*reported.original, *reported.noLearning);
   v.learnerHarms = v.original.p < 0.05 && v.original.meanDifference < 0.0;
-  const auto& winner = state.sets[chooseWinner(state.sets, stateDim)];
+  const auto& winner = state.sets[chooseWinner(state, stateDim)];
   if (winner.isOriginal()) return v;
   const auto& confirmation = state.confirmation;
   const bool confirmed = confirmsWinner(state, stateDim);

@@ -217,7 +217,8 @@ TEST(Evolve, BadDiscoveryKeysNameTheKey) {
            {"validation.confirm_params.updatez=3", "updatez"},
            {"validation.confirm_looks=0", "validation.confirm_looks"},
            {"validation.confirm_looks=6", "validation.confirm_looks"},
-           {"validation.confirm_seeds=5", "validation.confirm_looks"}}) {
+           {"validation.confirm_seeds=5", "validation.confirm_looks"},
+           {"validation.parsimony_se=-1", "validation.parsimony_se"}}) {
     const auto r = runGpfd("evolve " + tinyConfig() + " --quiet --out " + freshDir("bad-key") +
                            " --set " + set);
     EXPECT_EQ(r.status, 2) << set << ": " << r.output;

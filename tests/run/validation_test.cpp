@@ -16,12 +16,15 @@ namespace {
 
 const expr::VariableNames kNames{"x", "dx", "th", "dth"};
 
+// A set of the features `features` lists, separated by ';' (none: the original variables).
 ValidatedSet set(const std::string& features, std::vector<double> scores) {
   ValidatedSet s;
-  if (!features.empty()) {
-    s.genome.addFeature(expr::parseInfix(features, kNames));
-    s.key = gp::canonicalKey(s.genome);
+  for (std::size_t from = 0; from < features.size();) {
+    const std::size_t end = std::min(features.find(';', from), features.size());
+    s.genome.addFeature(expr::parseInfix(features.substr(from, end - from), kNames));
+    from = end + 1;
   }
+  if (!features.empty()) s.key = gp::canonicalKey(s.genome);
   s.scores = std::move(scores);
   return s;
 }
@@ -57,6 +60,33 @@ TEST(Validation, TheBestMeanWinsAndTheOriginalWinsTies) {
   sets[0].scores = {5, 5, 5};
   EXPECT_EQ(chooseWinner(sets, 4), 0u);
   EXPECT_EQ(originalIndex(sets), 0u);
+}
+
+// The one-standard-error rule keeps a feature only where the seeds show it adds something: the
+// best mean gives way to the simplest of its own parts within parsimonySe standard errors.
+TEST(Validation, TheSimplestPartWithinOneStandardErrorWins) {
+  std::vector<ValidatedSet> sets{
+      set("", {1, 2, 3}),
+      set("x * th ; dx", {2.9, 3.0, 3.1}),        // The best mean, 3, SE 0.0577.
+      set("dx ; x * th ; th", {2.9, 2.9, 3.05}),  // Not a part: it has a feature more.
+      set("x * th", {2.95, 3.0, 3.0}),            // A part, 2.983.
+      set("dx", {1, 1, 1}),                       // A part, far below.
+      set("th", {3.0, 2.98, 2.99})};              // Within the SE and smaller, but not a part.
+  EXPECT_EQ(chooseWinner(sets, 4), 1u);           // Off: the best mean.
+  EXPECT_EQ(chooseWinner(sets, 4, 1.0), 3u);
+  EXPECT_EQ(chooseWinner(sets, 4, 0.2), 1u);  // 2.983 is below 3 - 0.2 SE.
+  sets[3].scores = {2.8, 2.8, 2.8};
+  EXPECT_EQ(chooseWinner(sets, 4, 1.0), 1u);
+  sets[0].scores = {4, 4, 4};  // The original variables win: nothing to simplify.
+  EXPECT_EQ(chooseWinner(sets, 4, 1.0), 0u);
+
+  // What the run returns and confirms follows the state's rule.
+  ValidationState state;
+  state.sets = {set("", {1, 2, 3}), set("x ; dx", {2.9, 3.0, 3.1}), set("x", {3.0, 2.9, 3.0})};
+  EXPECT_EQ(returnedIndex(state, 4), 1u);
+  state.parsimonySe = 1.0;
+  EXPECT_EQ(chooseWinner(state, 4), 2u);
+  EXPECT_EQ(returnedIndex(state, 4), 2u);
 }
 
 TEST(Validation, TablesListEverySetAndTheFront) {

@@ -125,6 +125,10 @@ struct ExperimentConfig {
     int confirmLooks = 3;
     std::map<std::string, std::string> confirmParams;
     TrialMeasure confirmMeasure = TrialMeasure::Final;
+    // The one-standard-error rule (chooseWinner, run/validation.hpp): a discovered winner gives
+    // way to the smallest validated set made of some of its features whose validation mean is
+    // within parsimonySe standard errors of the winner's. 0: the best mean wins.
+    double parsimonySe = 0.0;
 
     // Whether a run validates and then confirms its winner.
     bool confirms() const { return candidates > 0 && confirmSeeds > 0; }

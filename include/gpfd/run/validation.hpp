@@ -65,8 +65,11 @@ struct ValidationState {
   // and in runs made before it existed.
   std::vector<double> noLearning;
   Confirmation confirmation;  // Of the final choice; not done when confirm_seeds is 0.
-  int finalGeneration = -1;   // The last generation after which the winner was chosen.
-  double seconds = 0.0;       // Wall time spent validating and confirming.
+  // config.validation.parsimonySe, which chooseWinner(state) applies; set from the run's config
+  // (not saved in checkpoints).
+  double parsimonySe = 0.0;
+  int finalGeneration = -1;  // The last generation after which the winner was chosen.
+  double seconds = 0.0;      // Wall time spent validating and confirming.
 };
 
 // A member of the hall of fame: one of the best distinct genomes the cache has scored.
@@ -121,9 +124,18 @@ class Validator {
   std::uint64_t stream_;
 };
 
-// The index of the set with the best mean score; ties go to the smaller set, then to the
-// original variables. `sets` must include the original variables.
-std::size_t chooseWinner(const std::vector<ValidatedSet>& sets, std::size_t stateDim);
+// The validation winner, an index into `sets` (which must include the original variables): the
+// set with the best mean score; ties go to the smaller set, then to the original variables.
+// With parsimonySe > 0 a discovered winner gives way to the simplest validated set made of some,
+// not all, of its features (fewest features, then fewest nodes, then the better mean) whose mean
+// is at least the winner's minus parsimonySe standard errors of the winner's mean: the
+// one-standard-error rule (Breiman, Friedman, Olshen & Stone 1984, Classification and
+// Regression Trees, section 3.4.3), kept to nested sets, so that a feature stays only where the
+// seeds show that it adds something.
+std::size_t chooseWinner(const std::vector<ValidatedSet>& sets, std::size_t stateDim,
+                         double parsimonySe = 0.0);
+// chooseWinner(state.sets, stateDim, state.parsimonySe).
+std::size_t chooseWinner(const ValidationState& state, std::size_t stateDim);
 
 // The index of the original variables in `sets`.
 std::size_t originalIndex(const std::vector<ValidatedSet>& sets);
