@@ -160,8 +160,8 @@ std::size_t originalIndex(const std::vector<ValidatedSet>& sets) {
 
 namespace {
 
-// The canonical keys of a genome's features, each simplified on its own (a feature's key inside
-// a genome's may order commutative operands differently).
+// The canonical keys of a genome's features, one feature at a time (so that equal features
+// compare equal whatever genome they are in; operands are not reordered: `x * y` is not `y * x`).
 std::set<std::string> featureKeys(const expr::Genome& genome) {
   std::set<std::string> keys;
   for (std::size_t k = 0; k < genome.featureCount(); ++k) {
