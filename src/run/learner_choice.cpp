@@ -68,14 +68,6 @@ std::vector<expr::Genome> randomSets(const ExperimentConfig& config, const Learn
   return sets;
 }
 
-// Each curve's score under `task`.
-std::vector<double> scoresOf(const LearningTask& task,
-                             const std::vector<rl::LearningCurve>& curves) {
-  std::vector<double> scores;
-  for (const auto& curve : curves) scores.push_back(task.score(curve));
-  return scores;
-}
-
 // The mean of `scores`; -inf where a training diverged (a NaN score).
 double meanOrWorst(const std::vector<double>& scores) {
   double sum = 0.0;
@@ -100,7 +92,7 @@ double bestQuarterOfRandomSets(const LearningTask& task, const std::vector<expr:
   }
   const auto curves = runner.run(task, batch, {});
   std::vector<double> means;
-  for (const auto& runs : curves) means.push_back(meanOrWorst(scoresOf(task, runs)));
+  for (const auto& runs : curves) means.push_back(meanOrWorst(task.scores(runs)));
   std::sort(means.begin(), means.end(), std::greater<>());
   const std::size_t quarter = std::max<std::size_t>(1, means.size() / 4);
   double sum = 0.0;
@@ -152,7 +144,7 @@ LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner&
     for (const auto& [key, value] : candidate) trained.learnerParams[key] = value;
     const LearningTask task(trained, budget);
     const auto curves = runner.run(task, batch, {});
-    choice.scores.push_back(scoresOf(task, curves[0]));
+    choice.scores.push_back(task.scores(curves[0]));
     choice.means.push_back(meanOrWorst(choice.scores.back()));
     choice.merits.push_back(choice.means.back());
     if (config.choiceRandomSets > 0) {

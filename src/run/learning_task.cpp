@@ -66,6 +66,12 @@ std::vector<rl::LearningCurve> LearningTask::trainRuns(const features::FeatureMa
       [this] { return env::Registry::global().make(config_.env, config_.envParams); }, map, rngs);
 }
 
+std::vector<double> LearningTask::scores(const std::vector<rl::LearningCurve>& curves) const {
+  std::vector<double> out;
+  for (const auto& curve : curves) out.push_back(score(curve));
+  return out;
+}
+
 double LearningTask::score(const rl::LearningCurve& curve) const {
   if (curve.diverged || curve.points.empty()) return kWorst;
   const auto& points = curve.points;

@@ -129,7 +129,7 @@ std::vector<std::vector<double>> Validator::score(const std::vector<TrialFeature
   const auto curves = runner_->run(task_, batch, {});
   std::vector<std::vector<double>> scores(sets.size());
   for (std::size_t s = 0; s < sets.size(); ++s) {
-    for (const auto& curve : curves[s]) scores[s].push_back(task_.score(curve));
+    scores[s] = task_.scores(curves[s]);
   }
   return scores;
 }
@@ -172,13 +172,11 @@ std::set<std::string> featureKeys(const expr::Genome& genome) {
   return keys;
 }
 
-// Whether discovered set `part` is made of some, not all, of discovered set `whole`'s features.
-bool isProperPart(const ValidatedSet& part, const ValidatedSet& whole) {
-  const auto partFeatures = featureKeys(part.genome);
-  const auto wholeFeatures = featureKeys(whole.genome);
-  return partFeatures.size() < wholeFeatures.size() &&
-         std::includes(wholeFeatures.begin(), wholeFeatures.end(), partFeatures.begin(),
-                       partFeatures.end());
+// Whether discovered set `part` is made of some, not all, of the features `whole` (featureKeys).
+bool isProperPart(const ValidatedSet& part, const std::set<std::string>& whole) {
+  const auto features = featureKeys(part.genome);
+  return features.size() < whole.size() &&
+         std::includes(whole.begin(), whole.end(), features.begin(), features.end());
 }
 
 // Whether `a` is simpler than `b`: fewer features, then fewer nodes, then the better mean.
@@ -198,11 +196,12 @@ std::size_t chooseWinner(const std::vector<ValidatedSet>& sets, std::size_t stat
   if (parsimonySe <= 0.0 || sets[best].isOriginal()) return best;
   const Summary summary = sets[best].summary();
   const double floor = summary.mean - parsimonySe * summary.standardError();
+  const auto bestFeatures = featureKeys(sets[best].genome);
   std::size_t chosen = best;
   for (std::size_t i = 0; i < sets.size(); ++i) {
     const auto& set = sets[i];
     if (set.isOriginal() || !(set.summary().mean >= floor)) continue;
-    if (isProperPart(set, sets[best]) && simpler(set, sets[chosen])) chosen = i;
+    if (isProperPart(set, bestFeatures) && simpler(set, sets[chosen])) chosen = i;
   }
   return chosen;
 }

@@ -52,6 +52,8 @@ class LearningTask {
   // where given, for validation; validation.confirm_measure for confirmation); -inf when the run
   // diverged or is empty.
   double score(const rl::LearningCurve& curve) const;
+  // score() of each curve, in order.
+  std::vector<double> scores(const std::vector<rl::LearningCurve>& curves) const;
 
  private:
   ExperimentConfig config_;
