@@ -1,8 +1,9 @@
 """PPO from Stable-Baselines3 on discovered features, against PPO on the raw observation.
 
-1. discover features for cart-pole (discrete force, 500 steps: Gymnasium CartPole-v1's task) with
-   a small GP run, once per GP seed;
-2. train PPO (SB3's MlpPolicy) on gpfd's vector cart-pole seen through each feature set alone,
+1. discover features for Gymnasium's CartPole-v1 as a user does: ``gpfd.evolve(env="CartPole-v1",
+   time_budget=60)``, the defaults for a user's environment within a time budget (validation,
+   confirmation, the one-standard-error rule), once per GP seed;
+2. train PPO (SB3's MlpPolicy) on CartPole-v1 seen through each returned set alone,
    through the set beside the raw observation (``with_original=True``: nothing the observation
    holds is lost, so a set fitted to gpfd's linear learner cannot hide a variable PPO needs),
    on the raw observation, and on the raw observation standardised by SB3's VecNormalize
@@ -12,7 +13,7 @@
 
 Needs the optional extra (PyTorch comes with SB3): scripts/sb3-example installs it and runs this.
     python examples/python/sb3_ppo.py                  # docs/results/sb3/README.md's figures
-    python examples/python/sb3_ppo.py --gp-runs 1 --seeds 1 --timesteps 2000   # a smoke run
+    python examples/python/sb3_ppo.py --gp-runs 1 --gp-budget 20 --seeds 1 --timesteps 2000  # smoke
 """
 
 from __future__ import annotations
@@ -30,7 +31,7 @@ from stable_baselines3.common.vec_env import VecEnv, VecMonitor, VecNormalize
 import gpfd
 import gpfd.sb3
 
-TASK = {"actions": "discrete", "max_steps": 500}
+ENV_ID = "CartPole-v1"
 N_ENVS = 8
 # PPO's hyperparameters for CartPole-v1 from the RL Baselines3 Zoo (hyperparams/ppo.yml), with
 # constant rates instead of its linear schedules.
@@ -46,26 +47,16 @@ PPO_PARAMS = {
 }
 
 
-def discover(seed: int, population: int, generations: int) -> gpfd.FeatureSet:
-    """A small cartpole-quick run on the discrete 500-step task; its returned (confirmed) set. A
-    finished run of the same settings in results/sb3-example is read back instead."""
-    out = Path(f"results/sb3-example/gp{seed}-p{population}-g{generations}")
+def discover(seed: int, budget: float) -> gpfd.FeatureSet:
+    """One GP run on CartPole-v1 with the defaults for a user's environment, sized by gpfd to end
+    within `budget` seconds; its returned (confirmed) set, or the original variables. A finished
+    run of the same settings in results/sb3-example is read back instead."""
+    out = Path(f"results/sb3-example/gp{seed}-budget{budget:g}s")
     if (out / "best.features").is_file():
         best = gpfd.load_run(out).best
     else:
         best = gpfd.evolve(
-            "cartpole-quick",
-            seed=seed,
-            population=population,
-            generations=generations,
-            set={
-                "env.params.actions": TASK["actions"],
-                "env.params.max_steps": TASK["max_steps"],
-                "learner.params.updates": 15,
-                "fitness.trials": 3,
-            },
-            verbose=False,
-            out=out,
+            env=ENV_ID, seed=seed, time_budget=budget, threads=2, verbose=False, out=out
         ).best
     assert best is not None  # A finished run has its best.features.
     return best
@@ -83,12 +74,7 @@ def train_and_evaluate(
 
     def make(env_seed: int) -> VecEnv:
         return gpfd.sb3.make_vec_env(
-            "gpfd/CartPole-v0",
-            N_ENVS,
-            seed=env_seed,
-            features=features,
-            with_original=with_original,
-            env_kwargs=TASK,
+            ENV_ID, N_ENVS, seed=env_seed, features=features, with_original=with_original
         )
 
     venv: VecEnv = VecMonitor(make(seed))
@@ -128,8 +114,9 @@ def main() -> None:
     # (at 50,000 PPO solves the task on every seed from the raw observation).
     parser.add_argument("--timesteps", type=int, default=20_000, help="PPO steps per training")
     parser.add_argument("--episodes", type=int, default=20, help="evaluation episodes")
-    parser.add_argument("--population", type=int, default=30)
-    parser.add_argument("--generations", type=int, default=8)
+    parser.add_argument(
+        "--gp-budget", type=float, default=60.0, help="seconds for each GP run (time_budget)"
+    )
     options = parser.parse_args()
     torch.set_num_threads(1)  # Small networks: one thread is faster than several contending.
     start = time.monotonic()
@@ -143,7 +130,7 @@ def main() -> None:
         ]
         rows.append((name, scores))
     for gp_seed in range(1, options.gp_runs + 1):
-        features = discover(gp_seed, options.population, options.generations)
+        features = discover(gp_seed, options.gp_budget)
         print(f"GP run {gp_seed}'s features:\n{features.show()}", flush=True)
         for beside in (False, True):
             scores = [

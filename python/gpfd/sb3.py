@@ -55,15 +55,14 @@ def make_vec_env(
 ) -> GpfdVecEnv:
     """``gymnasium.make_vec(env_id, n_envs, **env_kwargs)`` in same-step autoreset, as an SB3
     VecEnv. gpfd's ids step all instances in one C++ call; other ids use their native vector form
-    where Gymnasium has one, else ``SyncVectorEnv``. seed: instance i starts from seed + i at the
-    first reset (SB3's own convention)."""
+    where Gymnasium has one in same-step autoreset, else ``SyncVectorEnv`` (Gymnasium's own
+    CartPole-v1 has a native one in next-step autoreset only). seed: instance i starts from
+    seed + i at the first reset (SB3's own convention)."""
     kwargs = dict(env_kwargs or {})
     if env_id.startswith("gpfd/"):
         vector = gym.make_vec(env_id, n_envs, autoreset_mode=AutoresetMode.SAME_STEP, **kwargs)
     else:
-        vector = gym.make_vec(
-            env_id, n_envs, vector_kwargs={"autoreset_mode": AutoresetMode.SAME_STEP}, **kwargs
-        )
+        vector = _same_step_vector(env_id, n_envs, kwargs)
     venv = GpfdVecEnv(
         vector,
         features=features,
@@ -74,6 +73,23 @@ def make_vec_env(
     if seed is not None:
         venv.seed(seed)
     return venv
+
+
+def _same_step_vector(env_id: str, n_envs: int, kwargs: dict[str, Any]) -> VectorEnv:
+    """A Gymnasium id's vector form in same-step autoreset: its native one where that is the mode
+    it steps in (a native vector environment takes no ``vector_kwargs``), else SyncVectorEnv."""
+    if gym.spec(env_id).vector_entry_point is not None:
+        native = gym.make_vec(env_id, n_envs, **kwargs)
+        if native.metadata.get("autoreset_mode") == AutoresetMode.SAME_STEP:
+            return native
+        native.close()
+    return gym.make_vec(
+        env_id,
+        n_envs,
+        vectorization_mode="sync",
+        vector_kwargs={"autoreset_mode": AutoresetMode.SAME_STEP},
+        **kwargs,
+    )
 
 
 class GpfdVecEnv(_SB3VecEnv):

@@ -30,13 +30,8 @@ def run(venv, actions: list[np.ndarray]):
     return out
 
 
-def test_the_adapter_steps_as_sb3s_own_dummy_vec_env():
-    n, rng = 3, np.random.default_rng(0)
-    actions = [rng.integers(0, 2, n) for _ in range(120)]
-    ours = gpfd.sb3.make_vec_env("gpfd/CartPole-v0", n, seed=7, env_kwargs=TASK, float32=False)
-    theirs = sb3_vec_env.DummyVecEnv([lambda: gym.make("gpfd/CartPole-v0", **TASK)] * n)
-    theirs.seed(7)
-    got, want = run(ours, actions), run(theirs, actions)
+def assert_steps_alike(got, want) -> int:
+    """Two runs' steps are the same; how many episodes ended in them."""
     np.testing.assert_array_equal(got[0], want[0])
     ended = 0
     for (o1, r1, d1, t1), (o2, r2, d2, t2) in zip(got[1:], want[1:], strict=True):
@@ -46,6 +41,16 @@ def test_the_adapter_steps_as_sb3s_own_dummy_vec_env():
         for i in np.flatnonzero(d2):
             np.testing.assert_array_equal(t1[i], t2[i])
             ended += 1
+    return ended
+
+
+def test_the_adapter_steps_as_sb3s_own_dummy_vec_env():
+    n, rng = 3, np.random.default_rng(0)
+    actions = [rng.integers(0, 2, n) for _ in range(120)]
+    ours = gpfd.sb3.make_vec_env("gpfd/CartPole-v0", n, seed=7, env_kwargs=TASK, float32=False)
+    theirs = sb3_vec_env.DummyVecEnv([lambda: gym.make("gpfd/CartPole-v0", **TASK)] * n)
+    theirs.seed(7)
+    ended = assert_steps_alike(run(ours, actions), run(theirs, actions))
     assert ended >= n  # Every instance ended at least one episode (30 steps at most).
 
 
@@ -99,3 +104,15 @@ def test_ppo_learns_through_the_adapter():
     model.learn(total_timesteps=512)
     actions, _ = model.predict(venv.reset(), deterministic=True)
     assert actions.shape == (4,)
+
+
+def test_a_gymnasium_id_whose_native_vector_form_is_next_step_is_stepped_in_sync():
+    """Gymnasium's CartPole-v1 has a native vector form in next-step autoreset only: the adapter
+    steps it as SB3's own DummyVecEnv of gym.make would."""
+    n, rng = 2, np.random.default_rng(1)
+    actions = [rng.integers(0, 2, n) for _ in range(80)]
+    ours = gpfd.sb3.make_vec_env("CartPole-v1", n, seed=5, float32=False)
+    theirs = sb3_vec_env.DummyVecEnv([lambda: gym.make("CartPole-v1")] * n)
+    theirs.seed(5)
+    ended = assert_steps_alike(run(ours, actions), run(theirs, actions))
+    assert ended >= n  # Random actions end a CartPole-v1 episode within about 20-40 steps.
