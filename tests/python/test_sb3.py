@@ -2,6 +2,7 @@
 these; the default test run has no SB3 and skips them)."""
 
 import importlib.util
+import math
 from pathlib import Path
 from typing import Any
 
@@ -132,3 +133,5 @@ def test_the_examples_signed_rank_p_is_the_exact_two_sided_one():
     assert p([1, -2, 3, -4, 5, 6, 7, 8], [0] * 8) == 28 / 256  # W- = 6: 14 of 256 each side.
     assert p([2, 2, -2], [0] * 3) == 1.0  # Ranks 2, 2, 2: W+ = 4, no pattern nearer 3.
     assert p([500.0, 300.0], [500.0, 300.0]) == 1.0  # Only zero differences: nothing to test.
+    # 20 pairs, all one way: W+ = 210 = the maximum, z = (105 - 0.5) / sqrt(2870 / 4).
+    assert p(list(range(1, 21)), [0] * 20) == pytest.approx(math.erfc(104.5 / 717.5**0.5 / 2**0.5))
