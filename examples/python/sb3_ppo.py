@@ -19,8 +19,6 @@ Needs the optional extra (PyTorch comes with SB3): scripts/sb3-example installs 
 from __future__ import annotations
 
 import argparse
-import itertools
-import math
 import statistics
 import time
 from pathlib import Path
@@ -108,31 +106,6 @@ def summary(values: list[float]) -> str:
     return f"{statistics.fmean(values):7.1f} ± {spread:5.1f}"
 
 
-def signed_rank_p(a: list[float], b: list[float]) -> float:
-    """Two-sided Wilcoxon signed-rank p of paired a - b (Wilcoxon 1945): zero differences dropped,
-    tied magnitudes given their mean rank; exact (every sign pattern enumerated) up to 16 pairs,
-    beyond that the normal approximation with W+'s variance sum(rank^2)/4 and a continuity
-    correction of 1/2."""
-    d = [x - y for x, y in zip(a, b, strict=True) if x != y]
-    if not d:
-        return 1.0
-    magnitudes = sorted(abs(v) for v in d)
-    rank = {
-        m: statistics.fmean(i + 1 for i, v in enumerate(magnitudes) if v == m) for m in magnitudes
-    }
-    ranks = [rank[abs(v)] for v in d]
-    centre = sum(ranks) / 2
-    observed = abs(sum(r for r, v in zip(ranks, d, strict=True) if v > 0) - centre)
-    if len(d) > 16:
-        z = max(observed - 0.5, 0.0) / math.sqrt(sum(r * r for r in ranks) / 4)
-        return math.erfc(z / math.sqrt(2))
-    as_far = sum(
-        abs(sum(r for r, up in zip(ranks, signs, strict=True) if up) - centre) >= observed - 1e-9
-        for signs in itertools.product((False, True), repeat=len(d))
-    )
-    return as_far / 2 ** len(d)
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--gp-runs", type=int, default=3, help="independent GP runs (seeds 1..)")
@@ -169,12 +142,13 @@ def main() -> None:
     print(
         f"\nPPO, {options.timesteps} steps, {N_ENVS} environments, seeds 0-{options.seeds - 1}; "
         f"mean return of {options.episodes} deterministic episodes (max 500), mean ± sd over "
-        "seeds; p: paired signed-rank test against the raw observation, seed by seed:"
+        "seeds; p: Wilcoxon signed-rank test against the raw observation, seed by seed:"
     )
     raw = rows[0][1]
     for name, scores in rows:
         each = ", ".join(f"{v:.1f}" for v in scores)
-        print(f"  {name:46s} {summary(scores)}  p {signed_rank_p(scores, raw):.3g}   ({each})")
+        p = gpfd.signed_rank_test(np.subtract(scores, raw)).p
+        print(f"  {name:46s} {summary(scores)}  p {p:.3g}   ({each})")
     print(f"took {time.monotonic() - start:.0f} s")
 
 

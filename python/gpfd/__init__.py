@@ -15,6 +15,8 @@ The core is gpfd's C++ library; this package is a thin front over it:
   ``gpfd assess`` run them; ``evolve`` also runs on any Gymnasium environment with a Box
   observation space, stepped in Python (where it has a vector form, ``VectorFactory`` and
   gpfd.vector_source, the lanes of up to 16 evaluations at once).
+- ``signed_rank_test`` (gpfd.stats): the Wilcoxon signed-rank test of gpfd's method-level
+  verdict, for a user's own paired comparisons.
 
 docs/python.md in gpfd's repository is the guide.
 """
@@ -25,6 +27,7 @@ from gpfd import wrappers
 from gpfd._core import FeatureSet, InputError, __version__
 from gpfd.discovery import Run, assess, builtin_configs, evolve, fitness, fitness_of_each, load_run
 from gpfd.errors import EnvError
+from gpfd.stats import signed_rank_test
 from gpfd.vector_source import VectorFactory
 
 _envs.register_all()
@@ -43,5 +46,6 @@ __all__ = [
     "fitness",
     "fitness_of_each",
     "load_run",
+    "signed_rank_test",
     "wrappers",
 ]

@@ -24,6 +24,7 @@
 #include "gpfd/env/environment.hpp"
 #include "gpfd/expr/wire.hpp"
 #include "gpfd/run/learning_task.hpp"
+#include "gpfd/run/statistics.hpp"
 #include "gpfd/service/assess.hpp"
 #include "gpfd/service/configs.hpp"
 #include "gpfd/service/evolve.hpp"
@@ -478,6 +479,15 @@ void bindDiscovery(nb::module_& m) {
       },
       nb::arg("config"), nb::arg("overrides"), "A config, fully resolved, as TOML.");
   m.def("builtin_configs", &service::builtinConfigNames);
+  m.def(
+      "signed_rank_test",
+      [](const std::vector<double>& values) {
+        const auto test = run::wilcoxonSignedRank(values);
+        return nb::make_tuple(test.n, test.wPlus, test.p, test.median);
+      },
+      nb::arg("values"),
+      "run::wilcoxonSignedRank: (non-zero values, W+, two-sided p, median), the test of "
+      "gpfd's method-level verdict.");
   m.def("assess", &assess, nb::arg("config"), nb::arg("overrides"), nb::arg("env"),
         nb::arg("params"), nb::arg("runs"), nb::arg("budget"), nb::arg("seed"), nb::arg("threads"),
         nb::arg("features"), nb::arg("raw"), nb::arg("with_original"), nb::arg("fourier"),

@@ -1,9 +1,6 @@
 """gpfd.sb3: gpfd's vector environments as Stable-Baselines3 VecEnvs (scripts/sb3-example runs
 these; the default test run has no SB3 and skips them)."""
 
-import importlib.util
-import math
-from pathlib import Path
 from typing import Any
 
 import gymnasium as gym
@@ -119,19 +116,3 @@ def test_a_gymnasium_id_whose_native_vector_form_is_next_step_is_stepped_in_sync
     theirs.seed(5)
     ended = assert_steps_alike(run(ours, actions), run(theirs, actions))
     assert ended >= n  # Random actions end a CartPole-v1 episode within about 20-40 steps.
-
-
-def test_the_examples_signed_rank_p_is_the_exact_two_sided_one():
-    """examples/python/sb3_ppo.py's test against the raw observation: known exact values."""
-    path = Path(__file__).parents[2] / "examples" / "python" / "sb3_ppo.py"
-    spec = importlib.util.spec_from_file_location("sb3_ppo", path)
-    assert spec is not None and spec.loader is not None
-    example = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(example)
-    p = example.signed_rank_p
-    assert p([1, 2, 3, 4, 5], [0] * 5) == 2 / 32  # All five one way: the smallest p for n = 5.
-    assert p([1, -2, 3, -4, 5, 6, 7, 8], [0] * 8) == 28 / 256  # W- = 6: 14 of 256 each side.
-    assert p([2, 2, -2], [0] * 3) == 1.0  # Ranks 2, 2, 2: W+ = 4, no pattern nearer 3.
-    assert p([500.0, 300.0], [500.0, 300.0]) == 1.0  # Only zero differences: nothing to test.
-    # 20 pairs, all one way: W+ = 210 = the maximum, z = (105 - 0.5) / sqrt(2870 / 4).
-    assert p(list(range(1, 21)), [0] * 20) == pytest.approx(math.erfc(104.5 / 717.5**0.5 / 2**0.5))
