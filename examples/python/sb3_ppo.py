@@ -106,16 +106,36 @@ def summary(values: list[float]) -> str:
     return f"{statistics.fmean(values):7.1f} ± {spread:5.1f}"
 
 
+def positive(text: str) -> int:
+    """An argument that counts something: a whole number of at least 1."""
+    if not text.isdigit() or int(text) < 1:
+        raise argparse.ArgumentTypeError(f"must be a whole number of at least 1, not {text!r}")
+    return int(text)
+
+
+def seconds(text: str) -> float:
+    """A GP run's time budget: seconds above 0 (gpfd sizes the run to it)."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = 0.0
+    if not value > 0 or value == float("inf"):
+        raise argparse.ArgumentTypeError(f"must be seconds above 0, not {text!r}")
+    return value
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--gp-runs", type=int, default=3, help="independent GP runs (seeds 1..)")
-    parser.add_argument("--seeds", type=int, default=10, help="PPO seeds per observation")
+    parser.add_argument(
+        "--gp-runs", type=positive, default=3, help="independent GP runs (seeds 1..)"
+    )
+    parser.add_argument("--seeds", type=positive, default=10, help="PPO seeds per observation")
     # 20,000 steps: below the 500 ceiling on the raw observation, so that faster learning shows
     # (at 50,000 PPO solves the task on every seed from the raw observation).
-    parser.add_argument("--timesteps", type=int, default=20_000, help="PPO steps per training")
-    parser.add_argument("--episodes", type=int, default=20, help="evaluation episodes")
+    parser.add_argument("--timesteps", type=positive, default=20_000, help="PPO steps per training")
+    parser.add_argument("--episodes", type=positive, default=20, help="evaluation episodes")
     parser.add_argument(
-        "--gp-budget", type=float, default=60.0, help="seconds for each GP run (time_budget)"
+        "--gp-budget", type=seconds, default=60.0, help="seconds for each GP run (time_budget)"
     )
     options = parser.parse_args()
     torch.set_num_threads(1)  # Small networks: one thread is faster than several contending.

@@ -22,9 +22,13 @@ def signed_rank_test(differences: Iterable[float]) -> SignedRank:
     two-sided: the test of gpfd's method-level verdict over runs. Zero differences are dropped
     (a pair that ties says nothing), tied magnitudes get their mean rank; exact up to 30 non-zero
     differences, beyond that the normal approximation with tie and continuity corrections."""
-    values = [float(v) for v in differences]
-    for i, v in enumerate(values):
-        if not math.isfinite(v):
+    values: list[float] = []
+    for i, v in enumerate(differences):
+        try:
+            values.append(float(v))
+        except (TypeError, ValueError):
+            raise InputError(f"must be a number, not {v!r} (differences[{i}])") from None
+        if not math.isfinite(values[-1]):
             raise InputError(f"must be finite, not {v} (differences[{i}])")
     n, w_plus, p, median = _core.signed_rank_test(values)
     return SignedRank(n, w_plus, p, median)

@@ -25,3 +25,8 @@ def test_zero_differences_are_dropped():
 def test_a_non_finite_difference_is_an_input_error_naming_it(bad):
     with pytest.raises(gpfd.InputError, match=r"differences\[1\]"):
         gpfd.signed_rank_test([1.0, bad])
+
+
+def test_a_difference_that_is_not_a_number_is_an_input_error_naming_it():
+    with pytest.raises(gpfd.InputError, match=r"must be a number, not 'a' \(differences\[1\]\)"):
+        gpfd.signed_rank_test([1.0, "a"])  # type: ignore[list-item]  # Bad input on purpose.
