@@ -36,7 +36,7 @@ except ImportError as e:  # The optional extra.
         "gpfd.sb3 needs Stable-Baselines3: pip install 'gpfd[sb3]' (or stable-baselines3)"
     ) from e
 
-from gpfd._core import FeatureSet
+from gpfd._core import FeatureSet, InputError
 from gpfd.wrappers import check_features
 
 _F32_MAX = float(np.finfo(np.float32).max)
@@ -58,6 +58,8 @@ def make_vec_env(
     where Gymnasium has one in same-step autoreset, else ``SyncVectorEnv`` (Gymnasium's own
     CartPole-v1 has a native one in next-step autoreset only). seed: instance i starts from
     seed + i at the first reset (SB3's own convention)."""
+    if isinstance(n_envs, bool) or not isinstance(n_envs, int) or n_envs < 1:
+        raise InputError(f"must be a whole number of at least 1, not {n_envs!r} (n_envs=)")
     kwargs = dict(env_kwargs or {})
     if env_id.startswith("gpfd/"):
         vector = gym.make_vec(env_id, n_envs, autoreset_mode=AutoresetMode.SAME_STEP, **kwargs)

@@ -90,6 +90,12 @@ def test_a_vector_env_in_next_step_autoreset_is_refused():
         gpfd.sb3.GpfdVecEnv(vector)
 
 
+@pytest.mark.parametrize("n_envs", [0, -1, 2.0])
+def test_a_bad_number_of_environments_is_an_input_error_naming_it(n_envs):
+    with pytest.raises(gpfd.InputError, match=r"\(n_envs=\)"):
+        gpfd.sb3.make_vec_env("CartPole-v1", n_envs)
+
+
 def test_features_for_another_environment_are_refused():
     with pytest.raises(TypeError, match="features are for cartpole"):
         gpfd.sb3.make_vec_env("gpfd/Acrobot-v0", 2, features=features())
