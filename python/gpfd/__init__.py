@@ -23,6 +23,7 @@ docs/python.md in gpfd's repository is the guide.
 
 from gpfd import envs as _envs
 from gpfd import planted as _planted
+from gpfd import twins as _twins
 from gpfd import wrappers
 from gpfd._core import FeatureSet, InputError, __version__
 from gpfd.discovery import Run, assess, builtin_configs, evolve, fitness, fitness_of_each, load_run
@@ -32,6 +33,7 @@ from gpfd.vector_source import VectorFactory
 
 _envs.register_all()
 _planted.register_all()
+_twins.register_all()
 
 __all__ = [
     "EnvError",

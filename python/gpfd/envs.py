@@ -166,7 +166,11 @@ class GpfdEnv(gym.Env):
 
 def register_all() -> None:
     """Registers every gpfd environment with Gymnasium (idempotent)."""
+    from gpfd.twins import TWINS  # Registered by gpfd.twins, as gpfd/<Gymnasium id>.
+
     for name in filter(is_builtin, _core.env_names()):
+        if name in TWINS:
+            continue
         env_id = gym_id(name)
         if env_id in gym.registry:
             continue

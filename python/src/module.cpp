@@ -115,6 +115,7 @@ NB_MODULE(_core, m) {
   bindEnvironments(m);
   bindEnvironmentState(m);
   bindPythonEnvironments(m);
+  bindTwins(m);
   bindDiscovery(m);
   bindTrialRunner(m);
 }

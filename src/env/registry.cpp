@@ -8,6 +8,7 @@
 #include "gpfd/env/swimmer.hpp"
 #include "gpfd/env/tetris.hpp"
 #include "gpfd/util/error.hpp"
+#include "twins.hpp"
 
 namespace gpfd::env {
 namespace {
@@ -18,6 +19,11 @@ void addBuiltIns(Registry& registry) {
   registry.add(CartPole::info());
   registry.add(Swimmer::info());
   registry.add(Tetris::info());
+  // The twins of Gymnasium's classic-control tasks, under Gymnasium's ids.
+  for (const auto make : {twin::cartPoleTwin, twin::acrobotTwin, twin::pendulumTwin,
+                          twin::mountainCarTwin, twin::mountainCarContinuousTwin}) {
+    registry.add(make());
+  }
 }
 
 }  // namespace

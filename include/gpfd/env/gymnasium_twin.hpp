@@ -1,0 +1,84 @@
+// env: twins of Gymnasium's classic-control tasks (CartPole-v1, Acrobot-v1, Pendulum-v1,
+// MountainCar-v0, MountainCarContinuous-v0): the same episode as gymnasium.make(id) gives, bit
+// for bit, for any seed and actions. Seeding as Gymnasium's Env.reset does (numpy_random.hpp),
+// the dynamics in the operation order and NumPy types of Gymnasium's Python (numpy_scalar.hpp),
+// the observation as its float32 values, and the time limit of gymnasium.make's TimeLimit. The
+// state variables are the observation's, x0, x1, ... as gpfd names a Gymnasium observation.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "gpfd/env/environment.hpp"
+#include "gpfd/env/numpy_scalar.hpp"
+#include "gpfd/util/numpy_random.hpp"
+
+namespace gpfd::env {
+
+// The settings every twin has: which NumPy's promotion its Python would follow, and
+// gymnasium.make's time limit.
+struct TwinSettings {
+  numpy_scalar::Promotion promotion = numpy_scalar::Promotion::Nep50;
+  int maxEpisodeSteps = 0;  // 0: none.
+};
+
+// The NumPy type of a continuous action's elements: the action space's float32 (what
+// action_space.sample() and gpfd's learners give), float64, or Python numbers (a list).
+using ActionKind = numpy_scalar::Kind;
+
+class GymnasiumTwin : public Environment {
+ public:
+  std::string name() const override { return id_; }
+  const std::vector<std::string>& stateNames() const override { return names_; }
+  std::span<const double> state() const override { return observation_; }
+
+  // gpfd's runs: reset(seed=rng() >> 1), the seed gpfd.user_env's adapter gives Gymnasium's own
+  // environment, so that the twin plays the episodes that Gymnasium's would.
+  void reset(Rng& rng) override;
+  // Gymnasium's reset(seed=s), s an integer >= 0 as 32-bit words (least significant first).
+  void resetWithSeed(std::span<const std::uint32_t> seedWords);
+  // Gymnasium's reset(): the stream continues (one never seeded starts from fresh entropy).
+  void resetWithoutSeed();
+
+  // One step of gymnasium.make(id): the dynamics, then the time limit. Discrete actions: the
+  // index, InputError where Gymnasium's space would refuse it. Continuous ones: elements of
+  // `kind` (step() gives the action space's float32); NaN and out-of-range values do what they
+  // do in Gymnasium.
+  StepResult step(std::span<const double> action) override { return stepAs(action, actionKind_); }
+  StepResult stepAs(std::span<const double> action, ActionKind kind);
+  std::vector<std::uint64_t> snapshot() const override;
+  void restore(std::span<const std::uint64_t> words) override;
+
+  const TwinSettings& settings() const { return settings_; }
+
+ protected:
+  GymnasiumTwin(std::string id, std::size_t observationSize, TwinSettings settings,
+                ActionKind actionKind = ActionKind::Float32);
+  // The start state drawn from the environment's stream; writes the observation.
+  virtual void start(numpy::Pcg64& random) = 0;
+  // One step of the unwrapped environment; writes the observation.
+  virtual StepResult advance(std::span<const double> action, ActionKind kind) = 0;
+  // The action's size checked against the space (InputError naming the twin).
+  void checkActionSize(std::span<const double> action, std::size_t size) const;
+  numpy_scalar::Promotion promotion() const { return settings_.promotion; }
+
+  std::vector<double> observation_;
+  // What the next steps depend on beyond the stream and the time limit, for snapshots: the
+  // unwrapped environment's state and one more word of the twin's own.
+  std::vector<double> dynamics_;
+  std::uint64_t extra_ = 0;
+
+ private:
+  std::string id_;
+  std::vector<std::string> names_;
+  TwinSettings settings_;
+  ActionKind actionKind_;
+  std::optional<numpy::Pcg64> random_;
+  int elapsed_ = 0;  // Steps since the reset (TimeLimit's count).
+};
+
+}  // namespace gpfd::env

@@ -1,0 +1,114 @@
+// env: the twin of Gymnasium's Pendulum-v1 (gymnasium/envs/classic_control/pendulum.py, the same
+// in Gymnasium 1.1 to 1.4). The state is float64; the torque is the action's type (float32 from
+// the action space), so the cost's u**2 and the acceleration's 3 u follow NumPy's promotion.
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "gpfd/util/error.hpp"
+#include "twin_params.hpp"
+#include "twins.hpp"
+
+namespace gpfd::env::twin {
+namespace {
+
+struct PendulumConfig {
+  TwinSettings settings{Promotion::Nep50, 200};
+  double g = 10.0;
+
+  static const ParamTable<PendulumConfig>& table() {
+    static const auto table = [] {
+      ParamTable<PendulumConfig> t("Pendulum-v1");
+      declareTwinSettings(t);
+      t.real(
+          "g", [](auto& c) -> auto& { return c.g; }, 0.0, 1000.0,
+          "Gymnasium's keyword: gravitational acceleration");
+      return t;
+    }();
+    return table;
+  }
+};
+
+constexpr double kPi = 3.141592653589793;
+constexpr double kMaxSpeed = 8, kMaxTorque = 2.0, kDt = 0.05, kMass = 1.0, kLength = 1.0;
+constexpr double kDefaultX = kPi, kDefaultY = 1.0;  // The start state's bounds.
+
+// Python's and NumPy's float modulo: the result takes the divisor's sign.
+double floorMod(double a, double b) {
+  double mod = std::fmod(a, b);
+  if (mod != 0.0) {
+    if ((b < 0) != (mod < 0)) mod += b;
+  } else {
+    mod = std::copysign(0.0, b);
+  }
+  return mod;
+}
+
+class PendulumTwin final : public GymnasiumTwin {
+ public:
+  explicit PendulumTwin(const PendulumConfig& config)
+      : GymnasiumTwin("Pendulum-v1", 3, config.settings), config_(config) {
+    dynamics_.assign(2, 0.0);
+  }
+  Params params() const override { return PendulumConfig::table().write(config_); }
+  ActionSpace actionSpace() const override {
+    ActionSpace space;
+    space.low = {-kMaxTorque};
+    space.high = {kMaxTorque};
+    space.names = {"torque"};
+    return space;
+  }
+  // (cos th, sin th, dth), th from the first two by atan2.
+  void setState(std::span<const double> state) override {
+    if (state.size() != 3) throw InputError("Pendulum-v1 takes 3 state variables", "state");
+    dynamics_ = {std::atan2(state[1], state[0]), state[2]};
+    observe();
+  }
+
+ private:
+  void start(numpy::Pcg64& random) override {
+    // uniform(low=-high, high=high) over high = [x_init, y_init], element by element.
+    dynamics_ = {random.uniform(-kDefaultX, kDefaultX), random.uniform(-kDefaultY, kDefaultY)};
+    observe();
+  }
+
+  StepResult advance(std::span<const double> action, ActionKind kind) override {
+    checkActionSize(action, 1);
+    const Promotion p = promotion();
+    const Num th = f64(dynamics_[0], p), thdot = f64(dynamics_[1], p);
+    const Num u = numpy_scalar::npClip({action[0], kind, p}, py(-kMaxTorque, p), py(kMaxTorque, p));
+    const Num two = {2, Kind::PyInt, p};
+    // angle_normalize(th) = ((th + pi) % (2 pi)) - pi
+    const Num normalised = f64(floorMod((th + py(kPi, p)).value, 2 * kPi), p) - py(kPi, p);
+    const Num costs =
+        power(normalised, two) + py(0.1, p) * power(thdot, two) + py(0.001, p) * power(u, two);
+    const double g = config_.g;
+    const Num accel = py(3 * g / (2 * kLength), p) * f64(std::sin(th.value), p) +
+                      py(3.0 / (kMass * libmPow(kLength, 2)), p) * u;
+    Num newThdot = thdot + accel * py(kDt, p);
+    newThdot =
+        numpy_scalar::npClip(newThdot, {-kMaxSpeed, Kind::PyInt, p}, {kMaxSpeed, Kind::PyInt, p});
+    const Num newTh = th + newThdot * py(kDt, p);
+    dynamics_ = {newTh.value, newThdot.value};
+    observe();
+    StepResult result;
+    result.reward = -costs.value;
+    return result;
+  }
+
+  void observe() {
+    observation_ = {static_cast<float>(std::cos(dynamics_[0])),
+                    static_cast<float>(std::sin(dynamics_[0])), static_cast<float>(dynamics_[1])};
+  }
+
+  PendulumConfig config_;
+};
+
+}  // namespace
+
+EnvInfo pendulumTwin() {
+  return twinInfo<PendulumTwin, PendulumConfig>(
+      "Pendulum-v1", "Gymnasium's Pendulum-v1, the same episodes bit for bit (native twin)");
+}
+
+}  // namespace gpfd::env::twin

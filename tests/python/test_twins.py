@@ -1,0 +1,174 @@
+"""gpfd's twins of Gymnasium's classic-control tasks against Gymnasium's own, side by side: the
+same observations (bit for bit, dtype included), rewards, terminated and truncated, for hundreds
+of seeds, seeded and unseeded resets, 1,000+ steps, random and adversarial actions."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+import pytest
+
+import gpfd  # noqa: F401  (registers gpfd/<Gymnasium id>)
+from gpfd.twins import TWINS
+
+TASKS = list(TWINS)
+
+
+def _same(ours: Any, theirs: Any, what: str) -> None:
+    a, b = np.asarray(ours), np.asarray(theirs)
+    assert a.dtype == b.dtype and a.shape == b.shape, (what, a.dtype, b.dtype, a.shape, b.shape)
+    assert a.tobytes() == b.tobytes(), (what, a, b)
+
+
+def _same_reward(ours: float, theirs: float, what: str) -> None:
+    assert (math.isnan(ours) and math.isnan(theirs)) or ours == theirs, (what, ours, theirs)
+
+
+def _actions(env: gym.Env, rng: np.random.Generator, adversarial: bool) -> Any:
+    """A random action of the space; with `adversarial`, often a limit, and for continuous
+    spaces values beyond the bounds, huge ones and NaN, as float32 or float64 arrays or lists."""
+    space = env.action_space
+    if isinstance(space, gym.spaces.Discrete):
+        return int(rng.integers(space.n)) if rng.random() < 0.5 else np.int64(rng.integers(space.n))
+    if not adversarial:
+        return space.sample()
+    pick = rng.random()
+    low, high = float(space.low[0]), float(space.high[0])
+    value = [low, high, 0.0, low * 3, high * 1e6, float("nan"), rng.uniform(low, high)][
+        int(rng.integers(7))
+    ]
+    if pick < 0.4:
+        return np.array([value], dtype=np.float32)
+    if pick < 0.8:
+        return np.array([value], dtype=np.float64)
+    return [value]
+
+
+def _play(task: str, seeds: range, steps: int, adversarial: bool, **make: Any) -> tuple[int, int]:
+    """(steps played, the longest episode's length)."""
+    ours, theirs = gym.make(f"gpfd/{task}", **make), gym.make(task, **make)
+    rng = np.random.default_rng(len(seeds) + steps)
+    played = longest = 0
+    for seed in seeds:
+        for s in (seed, None):  # A seeded reset, then one that continues the stream.
+            obs, _ = ours.reset(seed=s)
+            their_obs, _ = theirs.reset(seed=s)
+            _same(obs, their_obs, f"reset(seed={s})")
+            start = played
+            for _ in range(steps):
+                action = _actions(theirs, rng, adversarial)
+                if task == "CartPole-v1" and adversarial and rng.random() < 0.9:
+                    action = int(obs[2] + 0.5 * obs[3] > 0)  # Balancing, for long episodes.
+                obs, reward, terminated, truncated, _ = ours.step(action)
+                their_obs, their_reward, t2, tr2, _ = theirs.step(action)
+                what = f"{task} seed {seed} step {played} action {action!r}"
+                _same(obs, their_obs, what)
+                _same_reward(float(reward), float(their_reward), what)
+                assert (terminated, truncated) == (t2, tr2), what
+                played += 1
+                if terminated or truncated:
+                    break
+            longest = max(longest, played - start)
+    return played, longest
+
+
+@pytest.mark.parametrize("task", TASKS)
+def test_hundreds_of_seeds_give_gymnasiums_episodes(task):
+    assert _play(task, range(200), 60, adversarial=False)[0] > 2000
+
+
+@pytest.mark.parametrize("task", TASKS)
+def test_long_episodes_with_adversarial_actions(task):
+    # 1,500 steps per episode (the time limit raised on both), actions at and beyond the limits.
+    played, longest = _play(task, range(1000, 1004), 1500, adversarial=True, max_episode_steps=1500)
+    assert longest >= 1000, longest
+
+
+@pytest.mark.parametrize("task", TASKS)
+def test_the_time_limit_and_the_spec_are_gymnasiums(task):
+    ours, theirs = gym.spec(f"gpfd/{task}"), gym.spec(task)
+    assert ours.max_episode_steps == theirs.max_episode_steps
+    assert ours.reward_threshold == theirs.reward_threshold
+    env, reference = gym.make(f"gpfd/{task}"), gym.make(task)
+    assert env.observation_space == reference.observation_space
+    assert env.action_space == reference.action_space
+
+
+def test_a_balanced_cartpole_is_truncated_at_500_as_gymnasiums():
+    ours, theirs = gym.make("gpfd/CartPole-v1"), gym.make("CartPole-v1")
+    obs, _ = ours.reset(seed=4)
+    theirs.reset(seed=4)
+    for step in range(1, 501):
+        action = int(obs[2] + 0.5 * obs[3] > 0)  # A balancing policy.
+        obs, r, terminated, truncated, _ = ours.step(action)
+        their = theirs.step(action)
+        _same(obs, their[0], f"step {step}")
+        assert (r, terminated, truncated) == (their[1], their[2], their[3])
+        if terminated or truncated:
+            break
+    assert truncated and step == 500
+
+
+@pytest.mark.parametrize("task", ["CartPole-v1", "MountainCar-v0"])
+def test_an_invalid_discrete_action_is_refused_as_gymnasium_refuses_it(task):
+    ours, theirs = gym.make(f"gpfd/{task}"), gym.make(task)
+    ours.reset(seed=0)
+    theirs.reset(seed=0)
+    for bad in (5, -1, 1.0, "1"):
+        with pytest.raises(AssertionError) as mine:
+            ours.step(bad)
+        with pytest.raises(AssertionError) as gyms:
+            theirs.step(bad)
+        assert str(mine.value) == str(gyms.value)
+
+
+def test_acrobot_takes_what_its_torque_list_takes_and_names_the_rest():
+    ours, theirs = gym.make("gpfd/Acrobot-v1"), gym.make("Acrobot-v1")
+    ours.reset(seed=1)
+    theirs.reset(seed=1)
+    for a in (-1, -3, 2, True, np.int32(0)):  # Python's indexing of [-1.0, 0.0, +1].
+        _same(ours.step(a)[0], theirs.step(a)[0], repr(a))
+    with pytest.raises(IndexError, match="0, 1 or 2"):
+        ours.step(3)
+    with pytest.raises(TypeError, match="integer"):
+        ours.step(1.5)
+
+
+@pytest.mark.parametrize("task", ["Pendulum-v1", "MountainCarContinuous-v0"])
+def test_a_continuous_action_of_the_wrong_shape_or_type_is_a_clear_error(task):
+    env = gym.make(f"gpfd/{task}")
+    env.reset(seed=0)
+    for bad, error in (
+        (np.float32(0.5), ValueError),
+        (np.zeros((1, 1)), ValueError),
+        (np.array([], dtype=np.float32), ValueError),
+        (np.array([1], dtype=np.float16), TypeError),
+    ):
+        with pytest.raises(error, match=task):
+            env.step(bad)
+
+
+def test_keywords_of_the_task_are_taken_and_others_refused():
+    ours = gym.make("gpfd/Pendulum-v1", g=9.81)
+    theirs = gym.make("Pendulum-v1", g=9.81)
+    assert _same(ours.reset(seed=2)[0], theirs.reset(seed=2)[0], "reset") is None
+    action = np.array([1.5], dtype=np.float32)
+    for _ in range(50):
+        _same(ours.step(action)[0], theirs.step(action)[0], "g=9.81")
+    with pytest.raises(TypeError, match="render_fps|takes g"):
+        gym.make("gpfd/Pendulum-v1", render_fps=3)
+
+
+def test_a_bad_seed_is_refused_as_gymnasium_refuses_it():
+    env = gym.make("gpfd/CartPole-v1")
+    with pytest.raises(gym.error.Error):
+        env.reset(seed=-1)
+
+
+def test_big_seeds_take_numpys_words():
+    ours, theirs = gym.make("gpfd/CartPole-v1"), gym.make("CartPole-v1")
+    for seed in (2**32, 2**63 + 5, 2**100 + 7):
+        _same(ours.reset(seed=seed)[0], theirs.reset(seed=seed)[0], f"seed {seed}")
