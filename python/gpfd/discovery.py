@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from gpfd import _core, progress, user_env
+from gpfd import _core, progress, twins, user_env
 from gpfd._core import FeatureSet, InputError
 from gpfd.evaluator import Evaluator
 
@@ -83,6 +83,36 @@ def _overrides(settings: Mapping[str, Any] | Iterable[str] | None) -> list[str]:
     return [str(s) for s in settings]
 
 
+def _twin_or_gymnasium(
+    env: Any, env_kwargs: dict | None, native: bool | None, executor: Any
+) -> Any:
+    """`env` as it will be stepped: a Gymnasium id that gpfd has a twin of (gpfd.twins) stays
+    the id, stepped by the twin in C++, where ``native`` is not False, no ``executor`` is given and
+    the twin takes every keyword; otherwise it becomes ``"gymnasium:ID"``, Gymnasium's own stepped
+    in Python (the same task under a name of its own). Says which in one line on stderr."""
+    if not (isinstance(env, str) and env in twins.TWINS):
+        return env
+    refused = sorted(set(env_kwargs or {}) - set(twins.TWINS[env][1]) - {"max_episode_steps"})
+    why = (
+        "native=False"
+        if native is False
+        else "executor= given"
+        if executor is not None
+        else f"its twin does not take {', '.join(refused)}"
+        if refused
+        else ""
+    )
+    if why:
+        print(f"gpfd: {env} stepped in Python by Gymnasium's own ({why})", file=sys.stderr)
+        return "gymnasium:" + env
+    print(
+        f"gpfd: {env} stepped in C++ by gpfd's twin of Gymnasium's, the same episodes bit for bit "
+        "(native=False: Gymnasium's own, in Python)",
+        file=sys.stderr,
+    )
+    return env
+
+
 def _env_overrides(env: Any, env_kwargs: dict | None) -> tuple[list[str], Evaluator | None]:
     """The overrides that select `env`, and for an environment stepped in Python its evaluator
     (not yet started; one worker until told)."""
@@ -90,6 +120,11 @@ def _env_overrides(env: Any, env_kwargs: dict | None) -> tuple[list[str], Evalua
         if env_kwargs:
             raise TypeError("env_kwargs needs env=")
         return [], None
+    if isinstance(env, str) and env in twins.TWINS:  # The twin (_twin_or_gymnasium chose it).
+        params = twins.twin_params(env, env_kwargs or {})
+        return [f"env.name={_toml_value(env)}", "env.params={}"] + [
+            f"env.params.{key}={_toml_value(value)}" for key, value in params.items()
+        ], None
     if isinstance(env, str) and user_env.is_builtin(env):
         if env_kwargs:
             raise TypeError(
@@ -236,6 +271,7 @@ def evolve(
     force: bool = False,
     time_budget: float | str | None = None,
     executor: Executor | None = None,
+    native: bool | None = None,
 ) -> Run:
     """Discovers features with GP, exactly as ``gpfd evolve`` does, and returns the run.
 
@@ -244,6 +280,12 @@ def evolve(
     env: one of gpfd's environments (``"acrobot"``, like ``--env``), or a Gymnasium id or a
         callable returning a Gymnasium environment, stepped in Python in ``threads`` worker
         processes (see gpfd.user_env); ``env_kwargs`` go to ``gymnasium.make`` or the callable.
+    native: a Gymnasium id with a twin in gpfd (CartPole-v1, Acrobot-v1, Pendulum-v1,
+        MountainCar-v0, MountainCarContinuous-v0: gpfd.twins) is stepped by the twin in C++, the
+        same episodes bit for bit and so the same run, unless ``native=False``, an ``executor``
+        is given or ``env_kwargs`` holds a keyword the twin does not take: then Gymnasium's own,
+        stepped in Python. One line on stderr says which. A ``gym.make(...)`` object or a
+        callable is never swapped.
     seed, population, generations: override the config's, like the command's flags.
     runs: N independent runs (run r in ``run-0r``, seeded from ``seed`` and r; run 1 is the single
         run) and a verdict on the method over them, like ``gpfd evolve --runs N`` (runs.csv);
@@ -291,6 +333,7 @@ def evolve(
     threads = _whole("threads", threads, 0)
     if generations is not None:
         generations = _whole("generations", generations, 0)
+    env = _twin_or_gymnasium(env, env_kwargs, native, executor)
     out_name = ""
     if resume is not None:
         if seed is not None or population is not None or set is not None or time_budget is not None:
@@ -299,8 +342,8 @@ def evolve(
         evaluator = _resumed_env(resume, env, env_kwargs)
     else:
         overrides, evaluator = _env_overrides(env, env_kwargs)
-        if evaluator is not None:
-            out_name = user_env.run_name(evaluator.name)
+        if evaluator is not None or env in twins.TWINS:
+            out_name = user_env.run_name(evaluator.name if evaluator is not None else env)
             if config is None:
                 config = user_env.DEFAULT_CONFIG
         if seed is not None:
@@ -361,11 +404,13 @@ def fitness(
     seed: int = 1,
     set: Mapping[str, Any] | Iterable[str] | None = None,
     env_kwargs: dict[str, Any] | None = None,
+    native: bool | None = None,
 ) -> float:
     """GP's fitness of a feature set: the mean score of the config's short learning trials, as
     one evaluation in ``gpfd evolve`` computes it (run::trialFitness with ``Rng(seed)``). An
     environment stepped in Python runs in this process (default config ``user-env``)."""
     sets = [_feature_set(features, "features")]
+    env = _twin_or_gymnasium(env, env_kwargs, native, None)
     return _fitness_of_each(sets, config, env, seed, set, env_kwargs)[0]
 
 
@@ -377,6 +422,7 @@ def fitness_of_each(
     seed: int = 1,
     set: Mapping[str, Any] | Iterable[str] | None = None,
     env_kwargs: dict[str, Any] | None = None,
+    native: bool | None = None,
 ) -> list[float]:
     """``fitness`` of each feature set, with the same seed, in this process; where the environment
     has a vector form, the evaluations play together in one vector environment (one lockstep
@@ -386,6 +432,7 @@ def fitness_of_each(
     if isinstance(features, (FeatureSet, str, os.PathLike)):
         raise TypeError("fitness_of_each takes a list of feature sets; fitness takes one")
     sets = [_feature_set(f, f"features[{i}]") for i, f in enumerate(features)]
+    env = _twin_or_gymnasium(env, env_kwargs, native, None)
     return _fitness_of_each(sets, config, env, seed, set, env_kwargs)
 
 
@@ -399,7 +446,7 @@ def _fitness_of_each(
 ) -> list[float]:
     overrides, evaluator = _env_overrides(env, env_kwargs)
     overrides += _overrides(settings)
-    if evaluator is not None and config is None:
+    if (evaluator is not None or env in twins.TWINS) and config is None:
         config = user_env.DEFAULT_CONFIG
     return _core.fitness_of_each(
         "" if config is None else os.fspath(config), overrides, sets, _whole("seed", seed, 0)
@@ -468,6 +515,7 @@ def assess(
     as_frame: bool | None = None,
     env_kwargs: dict[str, Any] | None = None,
     executor: Executor | None = None,
+    native: bool | None = None,
 ) -> Any:
     """The paper's test protocol, as ``gpfd assess`` runs it: each feature set (and the original
     state variables, the baseline, first) trained with the long budget over ``runs`` runs, with
@@ -485,12 +533,13 @@ def assess(
     """
     if isinstance(features, (FeatureSet, str, os.PathLike)):
         features = [features]
+    env = _twin_or_gymnasium(env, env_kwargs, native, executor)
     overrides, evaluator = _env_overrides(env, env_kwargs)
     # gpfd's own environment by name; one stepped in Python by the name it is registered under.
     env_name = evaluator.name if evaluator is not None else env if isinstance(env, str) else ""
     threads = _whole("threads", threads, 0)
     _use_workers(evaluator, threads, executor, env)
-    if evaluator is not None:
+    if evaluator is not None or env in twins.TWINS:
         if config is None:
             config = user_env.DEFAULT_CONFIG
     else:

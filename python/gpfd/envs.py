@@ -22,6 +22,7 @@ from gymnasium import spaces
 
 from gpfd import _core, render
 from gpfd.registry import is_builtin
+from gpfd.twins import TWINS
 
 # Gymnasium ids of the built-in environments; any other registered gpfd environment gets
 # gpfd/<Name>-v0.
@@ -43,7 +44,9 @@ TASKS: dict[str, tuple[str, dict[str, Any], float]] = {
 
 
 def gym_id(name: str) -> str:
-    """The Gymnasium id of a gpfd environment."""
+    """The Gymnasium id of a gpfd environment (gpfd/<Gymnasium id> for a twin, gpfd.twins)."""
+    if name in TWINS:
+        return f"gpfd/{name}"
     return _IDS.get(name) or f"gpfd/{name[:1].upper()}{name[1:]}-v0"
 
 
@@ -166,11 +169,9 @@ class GpfdEnv(gym.Env):
 
 def register_all() -> None:
     """Registers every gpfd environment with Gymnasium (idempotent)."""
-    from gpfd.twins import TWINS  # Registered by gpfd.twins, as gpfd/<Gymnasium id>.
-
     for name in filter(is_builtin, _core.env_names()):
         if name in TWINS:
-            continue
+            continue  # Registered by gpfd.twins, with Gymnasium's spaces and time limits.
         env_id = gym_id(name)
         if env_id in gym.registry:
             continue

@@ -56,18 +56,24 @@ def numpy_rule() -> str:
 
 
 def twin_params(task: str, kwargs: dict[str, Any]) -> dict[str, str]:
-    """The C++ twin's parameters for gymnasium.make(task, **kwargs); TypeError naming a keyword
-    the twin does not take."""
-    accepted = TWINS[task][1]
+    """The C++ twin's parameters for gymnasium.make(task, **kwargs): its keywords (and
+    ``max_episode_steps``) as text, with the NumPy rule installed; TypeError naming a keyword the
+    twin does not take."""
+    accepted = (*TWINS[task][1], "max_episode_steps")
     unknown = sorted(set(kwargs) - set(accepted))
     if unknown:
         raise TypeError(
-            f"gpfd's twin of {task} takes {', '.join(accepted) or 'no keywords'}, not "
-            f"{', '.join(unknown)}: give native=False (gpfd.evolve) or use Gymnasium's {task}"
+            f"gpfd's twin of {task} takes {', '.join(accepted)}, not {', '.join(unknown)}: give "
+            f"native=False (gpfd.evolve) or use Gymnasium's {task}"
         )
-    params = {"numpy": numpy_rule(), "max_episode_steps": "0"}
+    params = {"numpy": numpy_rule()}
     for key, value in kwargs.items():
-        params[key] = str(value).lower() if isinstance(value, bool) else repr(float(value))
+        if isinstance(value, bool):
+            params[key] = str(value).lower()
+        elif key == "max_episode_steps":
+            params[key] = str(int(value))
+        else:
+            params[key] = repr(float(value))
     return params
 
 
@@ -96,7 +102,7 @@ class TwinEnv(gym.Env):
             raise ValueError(f"no twin of {task!r}; the twins: {', '.join(TWINS)}")
         if render_mode is not None:
             raise ValueError(f"gpfd/{task} does not render: use Gymnasium's {task} to render")
-        params = twin_params(task, kwargs)
+        params = {**twin_params(task, kwargs), "max_episode_steps": "0"}  # gymnasium.make's.
         reference = _reference(task, kwargs)
         self.task = task
         self.observation_space = reference.observation_space

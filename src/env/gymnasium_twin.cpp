@@ -45,7 +45,7 @@ StepResult GymnasiumTwin::stepAs(std::span<const double> action, ActionKind kind
     // Elements of a float32 array: what gpfd.user_env's adapter gives Gymnasium's environment.
     std::array<double, 4> rounded{};
     checkActionSize(action, std::min(action.size(), rounded.size()));
-    for (std::size_t i = 0; i < action.size(); ++i) rounded[i] = static_cast<float>(action[i]);
+    for (std::size_t i = 0; i < action.size(); ++i) rounded[i] = numpy_scalar::toFloat32(action[i]);
     result = advance(std::span<const double>(rounded.data(), action.size()), kind);
   } else {
     result = advance(action, kind);

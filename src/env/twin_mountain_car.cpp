@@ -140,7 +140,7 @@ class MountainCarContinuousTwin final : public MountainCarBase {
     // reward = 0 (100 at the goal), less math.pow(action[0], 2) * 0.1: of the action as given.
     result.reward = (result.terminated ? 100.0 : 0.0) - libmPow(action[0], 2) * 0.1;
     // np.array([position, velocity], dtype=np.float32)
-    dynamics_ = {static_cast<float>(position.value), static_cast<float>(velocity.value)};
+    dynamics_ = {numpy_scalar::toFloat32(position.value), numpy_scalar::toFloat32(velocity.value)};
     extra_ = 0;
     observe();
     return result;

@@ -14,6 +14,14 @@
 namespace gpfd::env::numpy_scalar {
 
 enum class Promotion : std::uint8_t { Nep50, Legacy };
+
+// x rounded to float32 (NumPy's astype(np.float32)), through a volatile: GCC 12 at -O3 dropped
+// a plain static_cast<float> of MountainCarContinuous-v0's state, taking the value to be a
+// float32 already on a path where it is not.
+inline double toFloat32(double x) {
+  volatile float rounded = static_cast<float>(x);
+  return rounded;
+}
 enum class Kind : std::uint8_t { PyInt, PyFloat, Float32, Float64 };
 
 struct Num {
