@@ -80,10 +80,12 @@ void exportWeights(const ArsRun& run, LinearWeights& out) {
   run.features.exportTo(out);
 }
 
-// zero_policy = false: uniform in [-1/sqrt(d), 1/sqrt(d)] from the run's own stream.
+// zero_policy = false: uniform in [-1/sqrt(d), 1/sqrt(d)], d the features without the bias (a
+// linear layer's fan-in), from the run's own stream.
 void randomStart(ArsRun& run) {
   Rng rng(deriveSeed(run.seed, kStartStream));
-  const double bound = 1.0 / std::sqrt(static_cast<double>(run.theta.featureDim()));
+  const auto fanIn = std::max<std::size_t>(run.features.rawDim(), 1);
+  const double bound = 1.0 / std::sqrt(static_cast<double>(fanIn));
   for (double& w : run.theta.parameters()) w = rng.uniform(-bound, bound);
 }
 

@@ -24,7 +24,8 @@ const ParamTable<ArsConfig>& arsParams() {
             "nu: the scale of the perturbations of the weights")
         .flag(
             "zero_policy", [](auto& c) -> auto& { return c.zeroPolicy; },
-            "start from zero weights (false: uniform in +-1/sqrt(features))")
+            "start from zero weights (false: uniform in +-1/sqrt(d), d the features without the "
+            "bias)")
         .integer(
             "max_episode_steps", [](auto& c) -> auto& { return c.maxEpisodeSteps; }, 1, 1000000000,
             "safety cap on an episode's steps")

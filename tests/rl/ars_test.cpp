@@ -199,6 +199,27 @@ TEST(Ars, RefusesBadParametersByName) {
   EXPECT_THROW(trainArs(*env, raw, config, rng), InputError);
 }
 
+// zero_policy = false: weights uniform in +-1/sqrt(4) over cart-pole's raw variables (the bias's
+// too); true: zeros.
+TEST(Ars, StartsFromZeroOrFromUniformWeightsWithinTheFanInBound) {
+  const auto env = discreteCartPole();
+  const features::RawFeatureMap raw(4);
+  ArsConfig config;
+  config.updates = 0;
+  Rng a(1), b(1);
+  const auto zero = trainArs(*env, raw, config, a);
+  ASSERT_EQ(zero.weights.values.size(), 10u);  // 2 choices x (4 + bias).
+  for (const double w : zero.weights.values) EXPECT_EQ(w, 0.0);
+  config.zeroPolicy = false;
+  const auto random = trainArs(*env, raw, config, b);
+  double spread = 0.0;
+  for (const double w : random.weights.values) {
+    EXPECT_LE(std::abs(w), 0.5);
+    spread += std::abs(w);
+  }
+  EXPECT_GT(spread, 0.5);
+}
+
 TEST(Ars, IsRegisteredWithItsBudgetAndNeeds) {
   const auto& info = LearnerRegistry::global().info("ars");
   EXPECT_EQ(info.budgetParam, "updates");

@@ -34,7 +34,8 @@ struct ArsConfig {
   double learningRate = 0.02;  // alpha.
   double deltaStd = 0.05;      // nu, the scale of the perturbations.
   // Start from zero weights; false: each weight uniform in [-1/sqrt(d), 1/sqrt(d)], d the
-  // number of features (PyTorch's default for a linear layer, what sb3-contrib then starts from).
+  // number of features without the bias (PyTorch's default for a linear layer of fan-in d, what
+  // sb3-contrib then starts from).
   bool zeroPolicy = true;
   int maxEpisodeSteps = 100000;    // A safety cap on top of the environment's own time limit.
   std::int64_t maxTotalSteps = 0;  // Stop after the row in which the steps reach this (0: none).
