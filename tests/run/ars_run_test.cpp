@@ -1,10 +1,17 @@
 // The ars learner wherever a learner is used: `gpfd learners` lists it, a config with
 // `[learner] name = "ars"` and a choice of its settings (learner.choose) runs `gpfd evolve` to the
-// same results on one and two threads, and `gpfd assess` trains it on that run's config.
+// same results on one and two threads, `gpfd assess` trains it on that run's config, and the
+// trials of a fitness evaluation (compiled features, lanes of several trials) are what training
+// each alone gives, on each quick config's environment.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include "../rl/same_curves.hpp"
 #include "cli_helpers.hpp"
+#include "gpfd/expr/features_file.hpp"
 #include "gpfd/run/experiment_config.hpp"
+#include "gpfd/run/learning_task.hpp"
 
 namespace gpfd::testing {
 namespace {
@@ -71,6 +78,46 @@ TEST(ArsRun, EvolveChoosesItsSettingsAndIsTheSameOnOneAndTwoThreads) {
                                 " --runs 2 --budget 4 --threads 2 --quiet --out " + dir);
   ASSERT_EQ(assessed.status, 0) << assessed.output;
   EXPECT_NE(readText(dir + "/summary.csv").find("original"), std::string::npos);
+}
+
+TEST(ArsRun, TrialsTogetherEqualEachTrialAloneOnTheQuickConfigsEnvironments) {
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"cartpole", "x\nsin(th) * dth\ncos(th)\n"},
+      {"acrobot", "sin(th1)\ncos(th2)\ndth1 + dth2\n"},
+      {"swimmer3", "dGx\nsin(th1) + dth2\n"}};
+  for (const auto& [name, features] : cases) {
+    for (const bool normalise : {false, true}) {
+      SCOPED_TRACE(name + (normalise ? " V2" : " V1"));
+      run::ExperimentConfig config = run::loadExperimentConfig(std::string(GPFD_SOURCE_DIR) +
+                                                               "/configs/" + name + "-quick.toml");
+      config.learner = "ars";
+      config.learnerChoices.clear();
+      config.learnerAlternatives.clear();
+      config.learnerParams = {{"updates", "4"},
+                              {"n_delta", "3"},
+                              {"normalise", normalise ? "true" : "false"},
+                              {"max_episode_steps", "300"}};
+      const run::LearningTask task(config, run::LearningTask::Budget::Trial);
+      const auto genome =
+          expr::parseFeaturesFile(features, "test", task.stateNames(), config.env).genome;
+      const auto map = task.featureMap(genome);
+      std::vector<Rng> rngs{Rng(11), Rng(12), Rng(13)};
+      const auto curves = task.trainRuns(*map, rngs);
+      ASSERT_EQ(curves.size(), 3u);
+      for (std::size_t k = 0; k < 3; ++k) {
+        Rng alone(11 + k);
+        const auto curve = task.train(*map, alone);
+        EXPECT_FALSE(curve.diverged) << curve.divergedReason;
+        EXPECT_EQ(curve.points.size(), 5u);
+        rl::testing::expectSameCurves(curves[k], curve);
+        EXPECT_EQ(rngs[k](), alone());
+      }
+      Rng a(7), b(7);
+      const double fitness = run::trialFitness(task, genome, a);
+      EXPECT_TRUE(std::isfinite(fitness));
+      EXPECT_EQ(fitness, run::trialFitness(task, genome, b));
+    }
+  }
 }
 
 }  // namespace
