@@ -8,6 +8,8 @@
 //   fast = lockstep episodes through the batched environment.
 //   GP fitness (the trials of one evaluation through run::trialFitness): reference = the trials
 //   one after another, fast = played together.
+//   ARS fitness (the same trials' environments, features and iterations, ARS's defaults):
+//   reference = trials and episodes one after another, fast = lockstep lanes of every trial.
 //   Tetris lambda-PI (12 x 8, the 18 variables, Bertsekas-Ioffe start): reference = afterstates
 //   placement by placement, fast = afterstates in bulk.
 #include <benchmark/benchmark.h>
@@ -22,6 +24,7 @@
 #include "gpfd/env/tetris.hpp"
 #include "gpfd/expr/features_file.hpp"
 #include "gpfd/jit/compiled_feature_map.hpp"
+#include "gpfd/rl/ars.hpp"
 #include "gpfd/rl/game_afterstates.hpp"
 #include "gpfd/rl/lambda_policy_iteration.hpp"
 #include "gpfd/rl/policy_gradient.hpp"
@@ -180,6 +183,43 @@ void trialFitness(benchmark::State& state, const PgTrial& trial, int trials) {
   report(state, slow, quick, "evaluation");
 }
 
+// ARS (rl/ars.hpp, default settings: 8 directions, 16 episodes an iteration) on the same trials'
+// environments, features and iterations, K trials of a fitness evaluation: reference = one trial
+// after another, episodes one after another (lockstep=false); fast = every trial's episodes of
+// an iteration side by side (trainArsRuns, K x 16 lanes).
+void arsFitness(benchmark::State& state, const PgTrial& trial, int trials) {
+  PgSetup s(trial);
+  env::Environment& environment = *s.environment;
+  rl::ArsConfig reference;
+  reference.updates = trial.updates;
+  reference.lockstep = false;
+  rl::ArsConfig fast = reference;
+  fast.lockstep = true;
+  Path slow, quick;
+  std::uint64_t seed = 0;
+  for (auto _ : state) {
+    ++seed;
+    slow.time([&] {
+      std::int64_t steps = 0;
+      for (int t = 0; t < trials; ++t) {
+        Rng rng(deriveSeed(seed, t));
+        steps += rl::trainArs(environment, s.map, reference, rng).steps;
+      }
+      return steps;
+    });
+    quick.time([&] {
+      std::vector<Rng> rngs;
+      for (int t = 0; t < trials; ++t) rngs.emplace_back(deriveSeed(seed, t));
+      std::int64_t steps = 0;
+      for (const auto& curve : rl::trainArsRuns(environment, s.map, fast, rngs)) {
+        steps += curve.steps;
+      }
+      return steps;
+    });
+  }
+  report(state, slow, quick, "step");
+}
+
 // Registers BM_<kind><Env> for the four PG trials, in this order: run(state, trial, K) with K the
 // trials of a fitness evaluation in their configs (5 on cart-pole and Acrobot, 4 on the swimmers).
 template <class Run>
@@ -202,7 +242,8 @@ bool registerPerTrial(const std::string& kind, Run run) {
 const bool kPgRegistered =
     registerPerTrial("PgTrial", [](benchmark::State& state, const PgTrial& trial,
                                    int) { pgTrial(state, trial); }) &&
-    registerPerTrial("PgFitness", pgFitness) && registerPerTrial("TrialFitness", trialFitness);
+    registerPerTrial("PgFitness", pgFitness) && registerPerTrial("TrialFitness", trialFitness) &&
+    registerPerTrial("ArsFitness", arsFitness);
 
 // Lambda-PI on 12 x 8 with the paper's 18 state variables: 2 iterations of 10 games from the
 // Bertsekas-Ioffe start (short games, so that a run takes milliseconds). Unit: a decision (one

@@ -1,5 +1,6 @@
 #include <fmt/format.h>
 
+#include "gpfd/rl/ars.hpp"
 #include "gpfd/rl/lambda_policy_iteration.hpp"
 #include "gpfd/rl/learner.hpp"
 #include "gpfd/rl/policy_gradient.hpp"
@@ -12,6 +13,7 @@ namespace {
 void addBuiltIns(LearnerRegistry& registry) {
   registry.add(policyGradientLearner());
   registry.add(lambdaPolicyIterationLearner());
+  registry.add(arsLearner());
 }
 
 }  // namespace

@@ -97,7 +97,7 @@ TEST(CliTable, BadInputIsOneErrorLineWithExitTwo) {
       {"fitness-noise", "missing RUN (gpfd fitness-noise)"},
       {"fitness-noise " + dir + " --pairs 0",
        "0 is outside [1, 1000] (gpfd fitness-noise --pairs)"},
-      {"train cartpole --learner xx", "unknown learner 'xx' (known: lpi, pg) (--learner)"},
+      {"train cartpole --learner xx", "unknown learner 'xx' (known: ars, lpi, pg) (--learner)"},
       {"train cartpole --eval -1", "-1 is outside [0, 100000] (gpfd train --eval)"},
       {"simulate cartpole --steps -3", "-3 is outside [0, 10000000] (gpfd simulate --steps)"},
       {"simulate cartpole --policy greedy --steps 3", "'greedy' is not one of random"},

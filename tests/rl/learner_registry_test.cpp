@@ -36,7 +36,7 @@ void expectSameCurves(const LearningCurve& a, const LearningCurve& b) {
 
 TEST(LearnerRegistry, KnowsTheBuiltInLearnersAndTheirDeclarations) {
   const auto registered = learners().names();
-  for (const char* name : {"lpi", "pg"}) {
+  for (const char* name : {"ars", "lpi", "pg"}) {
     EXPECT_NE(std::find(registered.begin(), registered.end(), name), registered.end()) << name;
   }
   EXPECT_EQ(learners().info("pg").budgetParam, "updates");
