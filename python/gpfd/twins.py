@@ -87,7 +87,8 @@ def seed_words(seed: int) -> list[int]:
     return words or [0]
 
 
-def _reference(task: str, kwargs: dict[str, Any]) -> gym.Env:
+def reference(task: str, kwargs: dict[str, Any]) -> gym.Env:
+    """Gymnasium's own environment of `task`, whose spaces the twin takes."""
     module, name = TWINS[task][0].split(":")
     return getattr(__import__(module, fromlist=[name]), name)(**kwargs)
 
@@ -103,10 +104,10 @@ class TwinEnv(gym.Env):
         if render_mode is not None:
             raise ValueError(f"gpfd/{task} does not render: use Gymnasium's {task} to render")
         params = {**twin_params(task, kwargs), "max_episode_steps": "0"}  # gymnasium.make's.
-        reference = _reference(task, kwargs)
+        reference_env = reference(task, kwargs)
         self.task = task
-        self.observation_space = reference.observation_space
-        self.action_space = reference.action_space
+        self.observation_space = reference_env.observation_space
+        self.action_space = reference_env.action_space
         self._discrete = isinstance(self.action_space, gym.spaces.Discrete)
         self._core = _core.Twin(task, params)
 
@@ -163,6 +164,7 @@ def register_all() -> None:
         gym.register(
             id=env_id,
             entry_point="gpfd.twins:TwinEnv",
+            vector_entry_point="gpfd.twin_vector:TwinVectorEnv",
             max_episode_steps=spec.max_episode_steps,
             reward_threshold=spec.reward_threshold,
             kwargs={"task": task},

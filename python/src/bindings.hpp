@@ -64,7 +64,8 @@ void bindEnvironments(nb::module_& m);
 // After bindEnvironments: pickling and Tetris' board on EnvBatch (env_state_bindings.cpp).
 void bindEnvironmentState(nb::module_& m);
 void bindPythonEnvironments(nb::module_& m);
-void bindTwins(nb::module_& m);  // twin_bindings.cpp
+void bindTwins(nb::module_& m);        // twin_bindings.cpp
+void bindTwinVectors(nb::module_& m);  // twin_vector_bindings.cpp
 void bindDiscovery(nb::module_& m);
 // _core.train_runs_group: the worker processes' learning runs (trial_runner.cpp).
 void bindTrialRunner(nb::module_& m);

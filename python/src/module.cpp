@@ -116,6 +116,7 @@ NB_MODULE(_core, m) {
   bindEnvironmentState(m);
   bindPythonEnvironments(m);
   bindTwins(m);
+  bindTwinVectors(m);
   bindDiscovery(m);
   bindTrialRunner(m);
 }

@@ -172,3 +172,44 @@ def test_big_seeds_take_numpys_words():
     ours, theirs = gym.make("gpfd/CartPole-v1"), gym.make("CartPole-v1")
     for seed in (2**32, 2**63 + 5, 2**100 + 7):
         _same(ours.reset(seed=seed)[0], theirs.reset(seed=seed)[0], f"seed {seed}")
+
+
+def _step_both(ours, theirs, actions, what):
+    mine, gyms = ours.step(actions), theirs.step(actions)
+    for a, b, name in zip(mine[:4], gyms[:4], ("obs", "reward", "terminated", "truncated")):
+        _same(a, b, f"{what}: {name}")
+    if "final_obs" in gyms[4] or "final_obs" in mine[4]:
+        _same(mine[4]["_final_obs"], gyms[4]["_final_obs"], f"{what}: _final_obs")
+        for i in np.flatnonzero(gyms[4]["_final_obs"]):
+            _same(mine[4]["final_obs"][i], gyms[4]["final_obs"][i], f"{what}: final_obs {i}")
+    return gyms
+
+
+@pytest.mark.parametrize("mode", ["NextStep", "SameStep", "Disabled"])
+@pytest.mark.parametrize("task", TASKS)
+def test_the_vector_form_steps_as_sync_vector_env_in_every_autoreset_mode(task, mode):
+    from gymnasium.vector import AutoresetMode, SyncVectorEnv
+
+    n = 8
+    ours = gym.make_vec(f"gpfd/{task}", num_envs=n, autoreset_mode=mode)
+    theirs = SyncVectorEnv([lambda: gym.make(task)] * n, autoreset_mode=AutoresetMode(mode))
+    assert ours.single_observation_space == theirs.single_observation_space
+    _same(ours.reset(seed=7)[0], theirs.reset(seed=7)[0], "reset")
+    rng = np.random.default_rng(3)
+    ended = 0
+    for step in range(600):
+        actions = theirs.action_space.sample()
+        if step % 50 == 0 and not isinstance(theirs.single_action_space, gym.spaces.Discrete):
+            actions = actions.astype(np.float64) * 3  # Beyond the bounds, as float64.
+        gyms = _step_both(ours, theirs, actions, f"{task} {mode} step {step}")
+        done = gyms[2] | gyms[3]
+        ended += int(done.sum())
+        if mode == "Disabled" and done.any():
+            seeds = [int(rng.integers(1000)) if d else None for d in done]
+            options = {"reset_mask": done}
+            _same(
+                ours.reset(seed=seeds, options=options)[0],
+                theirs.reset(seed=seeds, options=options)[0],
+                f"{task} reset_mask at {step}",
+            )
+    assert ended > 0 or task == "MountainCarContinuous-v0"  # Its episodes run 999 steps.
