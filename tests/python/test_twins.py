@@ -176,7 +176,9 @@ def test_big_seeds_take_numpys_words():
 
 def _step_both(ours, theirs, actions, what):
     mine, gyms = ours.step(actions), theirs.step(actions)
-    for a, b, name in zip(mine[:4], gyms[:4], ("obs", "reward", "terminated", "truncated")):
+    for a, b, name in zip(
+        mine[:4], gyms[:4], ("obs", "reward", "terminated", "truncated"), strict=True
+    ):
         _same(a, b, f"{what}: {name}")
     if "final_obs" in gyms[4] or "final_obs" in mine[4]:
         _same(mine[4]["_final_obs"], gyms[4]["_final_obs"], f"{what}: _final_obs")
