@@ -281,11 +281,12 @@ def evolve(
         callable returning a Gymnasium environment, stepped in Python in ``threads`` worker
         processes (see gpfd.user_env); ``env_kwargs`` go to ``gymnasium.make`` or the callable.
     native: a Gymnasium id with a twin in gpfd (CartPole-v1, Acrobot-v1, Pendulum-v1,
-        MountainCar-v0, MountainCarContinuous-v0: gpfd.twins) is stepped by the twin in C++, the
-        same episodes bit for bit and so the same run, unless ``native=False``, an ``executor``
-        is given or ``env_kwargs`` holds a keyword the twin does not take: then Gymnasium's own,
-        stepped in Python. One line on stderr says which. A ``gym.make(...)`` object or a
-        callable is never swapped.
+        MountainCar-v0, MountainCarContinuous-v0: gpfd.twins) is stepped by the twin in C++,
+        the same episodes bit for bit as Gymnasium's (a whole run may still differ from the one
+        stepped in Python in the last bits of the learner's updates), unless ``native=False``,
+        an ``executor`` is given or ``env_kwargs`` holds a keyword the twin does not take: then
+        Gymnasium's own, stepped in Python. One line on stderr says which. A ``gym.make(...)``
+        object or a callable is never swapped.
     seed, population, generations: override the config's, like the command's flags.
     runs: N independent runs (run r in ``run-0r``, seeded from ``seed`` and r; run 1 is the single
         run) and a verdict on the method over them, like ``gpfd evolve --runs N`` (runs.csv);

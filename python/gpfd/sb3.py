@@ -21,6 +21,7 @@ recommends.
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Sequence
 from typing import Any, cast
 
@@ -36,6 +37,7 @@ except ImportError as e:  # The optional extra.
         "gpfd.sb3 needs Stable-Baselines3: pip install 'gpfd[sb3]' (or stable-baselines3)"
     ) from e
 
+from gpfd import twins
 from gpfd._core import FeatureSet, InputError
 from gpfd.wrappers import check_features
 
@@ -52,15 +54,29 @@ def make_vec_env(
     env_kwargs: dict[str, Any] | None = None,
     float32: bool = True,
     rescale_actions: bool = False,
+    native: bool = True,
 ) -> GpfdVecEnv:
     """``gymnasium.make_vec(env_id, n_envs, **env_kwargs)`` in same-step autoreset, as an SB3
     VecEnv. gpfd's ids step all instances in one C++ call; other ids use their native vector form
     where Gymnasium has one in same-step autoreset, else ``SyncVectorEnv`` (Gymnasium's own
     CartPole-v1 has a native one in next-step autoreset only). seed: instance i starts from
-    seed + i at the first reset (SB3's own convention)."""
+    seed + i at the first reset (SB3's own convention). A Gymnasium id with a twin in gpfd
+    (gpfd.twins: CartPole-v1, Acrobot-v1, Pendulum-v1, MountainCar-v0, MountainCarContinuous-v0)
+    steps the twins, the same episodes as Gymnasium's bit for bit, unless ``native=False`` or
+    ``env_kwargs`` holds a keyword the twin does not take; one line on stderr says so."""
     if isinstance(n_envs, bool) or not isinstance(n_envs, int) or n_envs < 1:
         raise InputError(f"must be a whole number of at least 1, not {n_envs!r} (n_envs=)")
     kwargs = dict(env_kwargs or {})
+    if (
+        native
+        and env_id in twins.TWINS
+        and set(kwargs) <= {*twins.TWINS[env_id][1], "max_episode_steps"}
+    ):
+        print(
+            f"gpfd: {env_id} stepped in C++ by gpfd's twins (native=False: Gymnasium's own)",
+            file=sys.stderr,
+        )
+        env_id = "gpfd/" + env_id
     if env_id.startswith("gpfd/"):
         vector = gym.make_vec(env_id, n_envs, autoreset_mode=AutoresetMode.SAME_STEP, **kwargs)
     else:

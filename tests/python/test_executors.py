@@ -119,6 +119,7 @@ def test_dask_gives_threads_one(tmp_path, reference, dask_client):
 def test_a_vector_form_in_lockstep_groups_on_dask_gives_threads_one(tmp_path, dask_client):
     common: dict[str, Any] = {
         "env": "CartPole-v1",
+        "native": False,  # Gymnasium's own, stepped in Python: its vector form on Dask.
         "seed": 2,
         "population": 20,  # Two lockstep groups of 10 evaluations.
         "generations": 1,

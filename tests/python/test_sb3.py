@@ -112,12 +112,14 @@ def test_ppo_learns_through_the_adapter():
     assert actions.shape == (4,)
 
 
-def test_a_gymnasium_id_whose_native_vector_form_is_next_step_is_stepped_in_sync():
+@pytest.mark.parametrize("native", [False, True])
+def test_a_gymnasium_id_whose_native_vector_form_is_next_step_is_stepped_in_sync(native):
     """Gymnasium's CartPole-v1 has a native vector form in next-step autoreset only: the adapter
-    steps it as SB3's own DummyVecEnv of gym.make would."""
+    steps it as SB3's own DummyVecEnv of gym.make would (native=False), and so do gpfd's twins
+    (native)."""
     n, rng = 2, np.random.default_rng(1)
     actions = [rng.integers(0, 2, n) for _ in range(80)]
-    ours = gpfd.sb3.make_vec_env("CartPole-v1", n, seed=5, float32=False)
+    ours = gpfd.sb3.make_vec_env("CartPole-v1", n, seed=5, float32=False, native=native)
     theirs = sb3_vec_env.DummyVecEnv([lambda: gym.make("CartPole-v1")] * n)
     theirs.seed(5)
     ended = assert_steps_alike(run(ours, actions), run(theirs, actions))
