@@ -41,7 +41,8 @@ void GymnasiumTwin::resetWithoutSeed() {
 
 StepResult GymnasiumTwin::stepAs(std::span<const double> action, ActionKind kind) {
   StepResult result;
-  if (kind == ActionKind::Float32 && actionSpace().continuous()) {
+  if (!continuous_) continuous_ = actionSpace().continuous();  // Once: the space allocates.
+  if (kind == ActionKind::Float32 && *continuous_) {
     // Elements of a float32 array: what gpfd.user_env's adapter gives Gymnasium's environment.
     std::array<double, 4> rounded{};
     checkActionSize(action, std::min(action.size(), rounded.size()));

@@ -45,12 +45,12 @@ Vec derivative(const Vec& s) {
   const double d1 = kM1 * lc1Sq + kM2 * (l1Sq + lc2Sq + 2 * kL1 * kLc2 * cos2) + kI1 + kI2;
   const double d2 = kM2 * (lc2Sq + kL1 * kLc2 * cos2) + kI2;
   const double phi2 = kM2 * kLc2 * kG * std::cos(theta1 + theta2 - kPi / 2.0);
-  const double phi1 = -kM2 * kL1 * kLc2 * libmPow(dtheta2, 2) * sin2 -
+  const double phi1 = -kM2 * kL1 * kLc2 * libmSquare(dtheta2) * sin2 -
                       2 * kM2 * kL1 * kLc2 * dtheta2 * dtheta1 * sin2 +
                       (kM1 * kLc1 + kM2 * kL1) * kG * std::cos(theta1 - kPi / 2) + phi2;
   const double ddtheta2 =
-      (a + d2 / d1 * phi1 - kM2 * kL1 * kLc2 * libmPow(dtheta1, 2) * sin2 - phi2) /
-      (kM2 * lc2Sq + kI2 - libmPow(d2, 2) / d1);
+      (a + d2 / d1 * phi1 - kM2 * kL1 * kLc2 * libmSquare(dtheta1) * sin2 - phi2) /
+      (kM2 * lc2Sq + kI2 - libmSquare(d2) / d1);
   const double ddtheta1 = -(d2 * ddtheta2 + phi1) / d1;
   return {dtheta1, dtheta2, ddtheta1, ddtheta2, 0.0};
 }

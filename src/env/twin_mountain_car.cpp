@@ -138,7 +138,7 @@ class MountainCarContinuousTwin final : public MountainCarBase {
     StepResult result;
     result.terminated = position >= py(0.45, p) && velocity >= py(config_.goalVelocity, p);
     // reward = 0 (100 at the goal), less math.pow(action[0], 2) * 0.1: of the action as given.
-    result.reward = (result.terminated ? 100.0 : 0.0) - libmPow(action[0], 2) * 0.1;
+    result.reward = (result.terminated ? 100.0 : 0.0) - libmSquare(action[0]) * 0.1;
     // np.array([position, velocity], dtype=np.float32)
     dynamics_ = {numpy_scalar::toFloat32(position.value), numpy_scalar::toFloat32(velocity.value)};
     extra_ = 0;

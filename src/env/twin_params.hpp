@@ -40,19 +40,48 @@ inline double libmPow(double x, double y) {
   return pow(x, y);
 }
 
+// pow(x, 2.0) as libm gives it, without calling libm where that cannot matter: glibc's pow errs
+// by at most 0.54 ulp (the bound stated in its e_pow.c), so where the exact square lies within
+// 0.45 ulp of the rounded product x * x (the product's error is exact by FMA), no other double is
+// near enough and pow returns x * x. Near a rounding boundary, and for tiny, huge or non-finite
+// squares, libm is asked.
+inline double libmSquare(double x) {
+  const double product = x * x;
+  const double magnitude = std::fabs(product);
+  if (!(magnitude > 0x1p-900 && magnitude < 0x1p1000)) return libmPow(x, 2.0);
+  const double error = std::fma(x, x, -product);
+  const double ulp = std::nextafter(magnitude, INFINITY) - magnitude;
+  return std::fabs(error) < 0.45 * ulp ? product : libmPow(x, 2.0);
+}
+
 // x ** y on a float32 scalar (NumPy's npy_powf): libm's powf, likewise.
 inline float libmPowf(float x, float y) {
   static float (*volatile const powf)(float, float) = &::powf;
   return powf(x, y);
 }
 
+// powf(x, 2.0f) likewise: x * x is exact in double; glibc's powf errs by at most 0.82 ulp (its
+// e_powf.c), so where the exact square lies within 0.15 ulp of its float rounding, powf returns
+// that rounding.
+inline float libmSquaref(float x) {
+  const double exact = static_cast<double>(x) * x;
+  const float rounded = static_cast<float>(exact);
+  const float magnitude = std::fabs(rounded);
+  if (!(magnitude > 0x1p-100f && magnitude < 0x1p100f)) return libmPowf(x, 2.0f);
+  const double ulp = std::nextafter(magnitude, INFINITY) - magnitude;
+  return std::fabs(exact - rounded) < 0.15 * ulp ? rounded : libmPowf(x, 2.0f);
+}
+
 // `x ** y` on values of NumPy's types: the promoted type's pow.
 inline Num power(const Num& x, const Num& y) {
   const Kind kind = numpy_scalar::resultKind(x, y);
-  const double value =
-      kind == Kind::Float32
-          ? static_cast<double>(libmPowf(static_cast<float>(x.value), static_cast<float>(y.value)))
-          : libmPow(x.value, y.value);
+  double value = 0.0;
+  if (kind == Kind::Float32) {
+    const float base = static_cast<float>(x.value), exponent = static_cast<float>(y.value);
+    value = exponent == 2.0f ? libmSquaref(base) : libmPowf(base, exponent);
+  } else {
+    value = y.value == 2.0 ? libmSquare(x.value) : libmPow(x.value, y.value);
+  }
   return {value, kind, x.isPython() ? y.promotion : x.promotion};
 }
 

@@ -3,7 +3,10 @@
 // the action space), so the cost's u**2 and the acceleration's 3 u follow NumPy's promotion.
 #include <fmt/format.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 #include "gpfd/util/error.hpp"
 #include "twin_params.hpp"
@@ -33,9 +36,18 @@ constexpr double kPi = 3.141592653589793;
 constexpr double kMaxSpeed = 8, kMaxTorque = 2.0, kDt = 0.05, kMass = 1.0, kLength = 1.0;
 constexpr double kDefaultX = kPi, kDefaultY = 1.0;  // The start state's bounds.
 
-// Python's and NumPy's float modulo: the result takes the divisor's sign.
+// Python's and NumPy's float modulo: the result takes the divisor's sign. fmod is exact; for a
+// positive divisor and a dividend within (-b, 2b) its value is a, or a - b (exact by Sterbenz's
+// lemma), without the call.
 double floorMod(double a, double b) {
-  double mod = std::fmod(a, b);
+  double mod = 0.0;
+  if (b > 0 && a > -b && a < b) {
+    mod = a;
+  } else if (b > 0 && a >= b && a < 2 * b) {
+    mod = a - b;
+  } else {
+    mod = std::fmod(a, b);
+  }
   if (mod != 0.0) {
     if ((b < 0) != (mod < 0)) mod += b;
   } else {
@@ -83,7 +95,7 @@ class PendulumTwin final : public GymnasiumTwin {
     const Num costs =
         power(normalised, two) + py(0.1, p) * power(thdot, two) + py(0.001, p) * power(u, two);
     const double g = config_.g;
-    const Num accel = py(3 * g / (2 * kLength), p) * f64(std::sin(th.value), p) +
+    const Num accel = py(3 * g / (2 * kLength), p) * f64(sine(th.value), p) +
                       py(3.0 / (kMass * libmPow(kLength, 2)), p) * u;
     Num newThdot = thdot + accel * py(kDt, p);
     newThdot =
@@ -97,11 +109,20 @@ class PendulumTwin final : public GymnasiumTwin {
   }
 
   void observe() {
-    observation_ = {static_cast<float>(std::cos(dynamics_[0])),
-                    static_cast<float>(std::sin(dynamics_[0])), static_cast<float>(dynamics_[1])};
+    sineOf_ = dynamics_[0];
+    sine_ = std::sin(dynamics_[0]);
+    observation_ = {static_cast<float>(std::cos(dynamics_[0])), static_cast<float>(sine_),
+                    static_cast<float>(dynamics_[1])};
+  }
+
+  // np.sin(th): the observation's sine of the same angle where it is the same (bit for bit).
+  double sine(double th) const {
+    return std::bit_cast<std::uint64_t>(th) == std::bit_cast<std::uint64_t>(sineOf_) ? sine_
+                                                                                     : std::sin(th);
   }
 
   PendulumConfig config_;
+  double sineOf_ = std::numeric_limits<double>::quiet_NaN(), sine_ = 0.0;
 };
 
 }  // namespace

@@ -78,7 +78,8 @@ class GymnasiumTwin : public Environment {
   TwinSettings settings_;
   ActionKind actionKind_;
   std::optional<numpy::Pcg64> random_;
-  int elapsed_ = 0;  // Steps since the reset (TimeLimit's count).
+  int elapsed_ = 0;                 // Steps since the reset (TimeLimit's count).
+  std::optional<bool> continuous_;  // Whether the action space is continuous, once asked.
 };
 
 }  // namespace gpfd::env
