@@ -11,7 +11,8 @@ import gymnasium as gym
 import numpy as np
 import pytest
 
-import gpfd  # noqa: F401  (registers gpfd/<Gymnasium id>)
+import gpfd
+import gpfd.twins
 from gpfd.twins import TWINS
 
 TASKS = list(TWINS)
@@ -215,3 +216,46 @@ def test_the_vector_form_steps_as_sync_vector_env_in_every_autoreset_mode(task, 
                 f"{task} reset_mask at {step}",
             )
     assert ended > 0 or task == "MountainCarContinuous-v0"  # Its episodes run 999 steps.
+
+
+ONE_EPISODE = {
+    "learner.params.updates": 3,
+    "learner.params.episodes": 1,
+    "learner.params.max_episode_steps": 60,
+    "fitness.trials": 1,
+}
+
+
+@pytest.mark.parametrize("task", ["Pendulum-v1", "MountainCarContinuous-v0", "Acrobot-v1"])
+def test_fitness_on_the_twin_plays_the_episodes_gymnasium_plays(task, capsys):
+    """With one episode per update the learner's arithmetic is the same on both paths, so the
+    fitness is equal only if every episode is (the seeds, actions, rewards and observations)."""
+    dim = gym.make(task).observation_space.shape[0]
+    names = " ".join(f"x{i}" for i in range(dim))
+    fs = gpfd.FeatureSet.parse(f"# variables: {names}\nx0\nx1 * x{dim - 1}\n")
+    native = gpfd.fitness(fs, env=task, set=ONE_EPISODE, seed=4)
+    said = capsys.readouterr().err
+    assert f"{task} stepped in C++ by gpfd's twin" in said
+    python = gpfd.fitness(fs, env=task, set=ONE_EPISODE, seed=4, native=False)
+    assert "stepped in Python by Gymnasium's own (native=False)" in capsys.readouterr().err
+    assert native == python
+
+
+def test_a_run_on_an_id_names_the_twin_or_gymnasiums_own(tmp_path, capsys):
+    small = {"seed": 1, "population": 4, "generations": 1, "set": ONE_EPISODE, "verbose": False}
+    twin = gpfd.evolve(env="CartPole-v1", out=tmp_path / "twin", threads=1, **small)
+    assert "name = 'CartPole-v1'" in (twin.dir / "config.toml").read_text()
+    python = gpfd.evolve(
+        env="CartPole-v1", native=False, out=tmp_path / "python", threads=1, **small
+    )
+    assert "name = 'gymnasium:CartPole-v1'" in (python.dir / "config.toml").read_text()
+    capsys.readouterr()
+    fs = gpfd.FeatureSet.parse("# variables: x0 x1 x2\nx0\n")
+    with pytest.raises((TypeError, gpfd.EnvError)):  # Gymnasium's own refuses it too.
+        gpfd.fitness(fs, env="Pendulum-v1", env_kwargs={"bogus": 1}, set=ONE_EPISODE)
+    assert "its twin does not take bogus" in capsys.readouterr().err
+
+
+def test_the_twins_follow_the_numpy_installed():
+    rule = "2" if int(np.__version__.split(".")[0]) >= 2 else "1"
+    assert gpfd.twins.numpy_rule() == rule
