@@ -118,7 +118,8 @@ TEST(CliTable, BadInputIsOneErrorLineWithExitTwo) {
       // Environment names, shipped config names and --set keys.
       {"simulate cartpol", "unknown environment 'cartpol' (did you mean 'cartpole'?)"},
       {"train cartpol",
-       "(did you mean 'cartpole'?) (known: acrobot, cartpole, swimmer, tetris) "
+       "(did you mean 'cartpole'?) (known: Acrobot-v1, CartPole-v1, MountainCar-v0, "
+       "MountainCarContinuous-v0, Pendulum-v1, acrobot, cartpole, swimmer, tetris) "
        "(gpfd train)"},
       {"assess cartpol --raw", "unknown environment 'cartpol' (did you mean 'cartpole'?)"},
       {"evolve --env acrobt", "unknown environment 'acrobt' (did you mean 'acrobot'?)"},
