@@ -16,7 +16,7 @@
 The peers alternate within each repetition; each figure is the median over the repetitions.
 
 Usage, with the package installed (scripts/test installs it in .venv):
-  .venv/bin/python bench/twins.py [--repeats 3] [--steps 20000] [--updates 3] [--skip-run]
+  .venv/bin/python bench/twins.py [--repeats 3] [--steps 20000] [--updates 3] [--sections 1,2,3]
 """
 
 import argparse
@@ -73,7 +73,9 @@ def draw_actions(space, count, seed):
 
 
 def steps_table(steps, repeats):
-    print(f"1. steps per CPU second (one core), {steps} steps (single) or {steps // 16} vector steps")
+    print(
+        f"1. steps per CPU second (one core), {steps} steps (single) or {steps // 16} vector steps"
+    )
     header = "| task | N | gpfd twin | Gymnasium | EnvPool | twin / Gymnasium | twin / EnvPool |"
     print(header)
     print("|---|---|---|---|---|---|---|")
@@ -172,7 +174,7 @@ def run_table(repeats, threads):
     with tempfile.TemporaryDirectory() as tmp:
         for r in range(repeats):
             for name, kwargs in cases.items():
-                out = os.path.join(tmp, f"{r}-{len(times[name])}")
+                out = os.path.join(tmp, f"{r}-{list(cases).index(name)}")
                 start = time.perf_counter()
                 with contextlib.redirect_stderr(io.StringIO()):
                     gpfd.evolve(
@@ -193,16 +195,19 @@ def main():
     parser.add_argument("--steps", type=int, default=20000)
     parser.add_argument("--updates", type=int, default=3)
     parser.add_argument("--threads", type=int, default=2)
-    parser.add_argument("--skip-run", action="store_true", help="leave out the whole runs")
+    parser.add_argument("--sections", default="1,2,3", help="which of the three to measure")
     args = parser.parse_args()
     print(
         f"gpfd {gpfd.__version__}, Gymnasium {gym.__version__}, NumPy {np.__version__}, "
         f"EnvPool {getattr(envpool, '__version__', 'not installed')}, "
         f"load average {os.getloadavg()[0]:.1f}\n"
     )
-    steps_table(args.steps, args.repeats)
-    fitness_table(args.repeats, args.updates)
-    if not args.skip_run:
+    sections = {int(x) for x in args.sections.split(",")}
+    if 1 in sections:
+        steps_table(args.steps, args.repeats)
+    if 2 in sections:
+        fitness_table(args.repeats, args.updates)
+    if 3 in sections:
         run_table(args.repeats, args.threads)
 
 

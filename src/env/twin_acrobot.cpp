@@ -40,7 +40,8 @@ using Vec = std::array<double, 5>;  // theta1, theta2, dtheta1, dtheta2, torque
 // _dsdt, term by term in its order; Python's ** on a float64 is libm's pow.
 Vec derivative(const Vec& s) {
   const double a = s[4], theta1 = s[0], theta2 = s[1], dtheta1 = s[2], dtheta2 = s[3];
-  const double lc1Sq = libmPow(kLc1, 2), lc2Sq = libmPow(kLc2, 2), l1Sq = libmPow(kL1, 2);
+  // lc1**2, lc2**2 and l1**2 of Python floats: libm's pow, the same every call.
+  static const double lc1Sq = libmPow(kLc1, 2), lc2Sq = libmPow(kLc2, 2), l1Sq = libmPow(kL1, 2);
   const double cos2 = std::cos(theta2), sin2 = std::sin(theta2);
   const double d1 = kM1 * lc1Sq + kM2 * (l1Sq + lc2Sq + 2 * kL1 * kLc2 * cos2) + kI1 + kI2;
   const double d2 = kM2 * (lc2Sq + kL1 * kLc2 * cos2) + kI2;

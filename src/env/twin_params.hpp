@@ -2,7 +2,9 @@
 // their registry entries, and libm's pow as NumPy and Python call it.
 #pragma once
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -40,6 +42,13 @@ inline double libmPow(double x, double y) {
   return pow(x, y);
 }
 
+// The unit in the last place of a normal positive value with `mantissaBits` stored bits (52 for
+// a double, 23 for a float): 2^(its exponent - mantissaBits), from the exponent's bits.
+inline double ulpOf(double magnitude, int mantissaBits) {
+  const auto exponent = std::bit_cast<std::uint64_t>(magnitude) & 0x7ff0000000000000ULL;
+  return std::bit_cast<double>(exponent - (static_cast<std::uint64_t>(mantissaBits) << 52));
+}
+
 // pow(x, 2.0) as libm gives it, without calling libm where that cannot matter: glibc's pow errs
 // by at most 0.54 ulp (the bound stated in its e_pow.c), so where the exact square lies within
 // 0.45 ulp of the rounded product x * x (the product's error is exact by FMA), no other double is
@@ -50,8 +59,7 @@ inline double libmSquare(double x) {
   const double magnitude = std::fabs(product);
   if (!(magnitude > 0x1p-900 && magnitude < 0x1p1000)) return libmPow(x, 2.0);
   const double error = std::fma(x, x, -product);
-  const double ulp = std::nextafter(magnitude, INFINITY) - magnitude;
-  return std::fabs(error) < 0.45 * ulp ? product : libmPow(x, 2.0);
+  return std::fabs(error) < 0.45 * ulpOf(magnitude, 52) ? product : libmPow(x, 2.0);
 }
 
 // x ** y on a float32 scalar (NumPy's npy_powf): libm's powf, likewise.
@@ -68,8 +76,9 @@ inline float libmSquaref(float x) {
   const float rounded = static_cast<float>(exact);
   const float magnitude = std::fabs(rounded);
   if (!(magnitude > 0x1p-100f && magnitude < 0x1p100f)) return libmPowf(x, 2.0f);
-  const double ulp = std::nextafter(magnitude, INFINITY) - magnitude;
-  return std::fabs(exact - rounded) < 0.15 * ulp ? rounded : libmPowf(x, 2.0f);
+  return std::fabs(exact - static_cast<double>(rounded)) < 0.15 * ulpOf(magnitude, 23)
+             ? rounded
+             : libmPowf(x, 2.0f);
 }
 
 // `x ** y` on values of NumPy's types: the promoted type's pow.
