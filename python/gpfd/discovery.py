@@ -84,12 +84,13 @@ def _overrides(settings: Mapping[str, Any] | Iterable[str] | None) -> list[str]:
 
 
 def _twin_or_gymnasium(
-    env: Any, env_kwargs: dict | None, native: bool | None, executor: Any
+    env: Any, env_kwargs: dict | None, native: bool | None, executor: Any, say: bool = True
 ) -> Any:
     """`env` as it will be stepped: a Gymnasium id that gpfd has a twin of (gpfd.twins) stays
     the id, stepped by the twin in C++, where ``native`` is not False, no ``executor`` is given and
     the twin takes every keyword; otherwise it becomes ``"gymnasium:ID"``, Gymnasium's own stepped
-    in Python (the same task under a name of its own). Says which in one line on stderr."""
+    in Python (the same task under a name of its own). Says which in one line on stderr, unless
+    not ``say``."""
     if not (isinstance(env, str) and env in twins.TWINS):
         return env
     refused = sorted(set(env_kwargs or {}) - set(twins.TWINS[env][1]) - {"max_episode_steps"})
@@ -103,13 +104,15 @@ def _twin_or_gymnasium(
         else ""
     )
     if why:
-        print(f"gpfd: {env} stepped in Python by Gymnasium's own ({why})", file=sys.stderr)
+        if say:
+            print(f"gpfd: {env} stepped in Python by Gymnasium's own ({why})", file=sys.stderr)
         return "gymnasium:" + env
-    print(
-        f"gpfd: {env} stepped in C++ by gpfd's twin of Gymnasium's, the same episodes bit for bit "
-        "(native=False: Gymnasium's own, in Python)",
-        file=sys.stderr,
-    )
+    if say:
+        print(
+            f"gpfd: {env} stepped in C++ by gpfd's twin of Gymnasium's, the same episodes bit "
+            "for bit (native=False: Gymnasium's own, in Python)",
+            file=sys.stderr,
+        )
     return env
 
 
@@ -285,8 +288,8 @@ def evolve(
         the same episodes bit for bit as Gymnasium's (a whole run may still differ from the one
         stepped in Python in the last bits of the learner's updates), unless ``native=False``,
         an ``executor`` is given or ``env_kwargs`` holds a keyword the twin does not take: then
-        Gymnasium's own, stepped in Python. One line on stderr says which. A ``gym.make(...)``
-        object or a callable is never swapped.
+        Gymnasium's own, stepped in Python. One line on stderr says which (none with
+        ``verbose=False``). A ``gym.make(...)`` object or a callable is never swapped.
     seed, population, generations: override the config's, like the command's flags.
     runs: N independent runs (run r in ``run-0r``, seeded from ``seed`` and r; run 1 is the single
         run) and a verdict on the method over them, like ``gpfd evolve --runs N`` (runs.csv);
@@ -334,7 +337,7 @@ def evolve(
     threads = _whole("threads", threads, 0)
     if generations is not None:
         generations = _whole("generations", generations, 0)
-    env = _twin_or_gymnasium(env, env_kwargs, native, executor)
+    env = _twin_or_gymnasium(env, env_kwargs, native, executor, say=verbose is not False)
     out_name = ""
     if resume is not None:
         if seed is not None or population is not None or set is not None or time_budget is not None:
