@@ -253,6 +253,21 @@ def _as_argument(error: InputError, key: str) -> InputError:
     return error
 
 
+def _budget_value(value: Any) -> str:
+    """``time_budget=`` as a config value: seconds (a finite number) or text such as "10m";
+    InputError naming the argument (``(time_budget=)``), not the config key it becomes."""
+    number = isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(
+        value, bool
+    )
+    if isinstance(value, str) or (number and math.isfinite(value)):
+        return _toml_value(value)
+    what = f"{value}" if number else f"{type(value).__name__} ({value!r})"
+    raise InputError(
+        f'time_budget must be seconds (a finite number) or text such as "10m", not {what} '
+        "(time_budget=)"
+    )
+
+
 def evolve(
     config: str | os.PathLike | None = None,
     *,
@@ -353,7 +368,7 @@ def evolve(
             overrides.append(f"gp.population={_whole('population', population, 1)}")
         overrides += _overrides(set)
         if time_budget is not None:
-            overrides += _overrides({"time_budget": time_budget})
+            overrides.append(f"time_budget={_budget_value(time_budget)}")
     _use_workers(evaluator, threads, executor, env)
 
     bar = progress.EvolveBar() if progress.shows_bar(verbose) else None
