@@ -19,6 +19,7 @@
 #include "gpfd/run/checkpoint.hpp"
 #include "gpfd/run/learning_task.hpp"
 #include "gpfd/run/run_set.hpp"
+#include "gpfd/run/stored_config.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
 #include "gpfd/util/number.hpp"
@@ -185,7 +186,7 @@ std::string frontTable(const std::string& dir) {
     return run::formatFrontTable(checkpoint.validation.sets,
                                  expr::readFeaturesFile(named).variables);
   }
-  const auto config = run::parseExperimentConfig(checkpoint.config, path + " (config)");
+  const auto config = run::parseStoredExperimentConfig(checkpoint.config, path + " (config)");
   const auto names = run::LearningTask(config, run::LearningTask::Budget::Trial).stateNames();
   return run::formatFrontTable(checkpoint.validation.sets, names);
 }

@@ -12,6 +12,7 @@ again; a send that failed, sent again; none possible, a WorkerError) is also tes
 process with a double of mpi4py's pool (Losing), without MPI."""
 
 import ctypes
+import json
 import os
 import shutil
 import subprocess
@@ -300,10 +301,14 @@ def test_mpi4py_job_ended_by_a_dead_worker_resumes_to_the_same_run(tmp_path):
     assert done.returncode != 0
     assert (tmp_path / "mpi-flags/died").exists()
     assert not (tmp_path / "mpi/validation.csv").exists()  # The run stopped in its generations.
+    # Resumed with the keywords it was started with (a resume continues only the same task):
+    # its parent was the MPI script's process; its worker has died already (mpi-flags/died).
+    started = json.loads((tmp_path / "mpi/run.json").read_text())["env"]["kwargs"]
+    assert started["directory"] == str(tmp_path / "mpi-flags")
     run = gpfd.evolve(
         resume=tmp_path / "mpi",
         env=DiesOnce,
-        env_kwargs={"directory": str(tmp_path / "mpi-flags"), "parent": os.getpid()},
+        env_kwargs=started,
         threads=2,
         verbose=False,
     )
