@@ -169,7 +169,8 @@ def _use_workers(evaluator: Evaluator | None, threads: int, executor: Any, env: 
 
 def _resumed_env(resume: str | os.PathLike, env: Any, env_kwargs: dict | None) -> Evaluator | None:
     """The evaluator of the run in `resume` where it is on an environment stepped in Python: of
-    `env` (and `env_kwargs`) when given, else of its Gymnasium id or EnvPool task as stored."""
+    `env` (and `env_kwargs`) when given, else of its Gymnasium id or EnvPool task as stored (with
+    `env_kwargs`)."""
     config = Path(resume, "config.toml")
     if not config.is_file():
         return None  # The C++ side says what is missing.
@@ -179,8 +180,6 @@ def _resumed_env(resume: str | os.PathLike, env: Any, env_kwargs: dict | None) -
             raise TypeError(f"the run in {resume} is on {stored}, not {env!r}")
         return None
     if env is None:
-        if env_kwargs:
-            raise TypeError("env_kwargs needs env=")
         if stored.startswith("python:"):
             raise TypeError(
                 f"the run in {resume} is on {stored.removeprefix('python:')}, stepped in Python: "

@@ -100,3 +100,14 @@ def test_other_spaces_are_refused_naming_the_space(tmp_path, monkeypatch):
     assert "run.json" in str(e.value) and "action_space" not in str(e.value)
     monkeypatch.setitem(BOUND, "high", 10.0)
     assert resume(tmp_path, bounded_point).generations == 2
+
+
+def test_a_gymnasium_id_resumes_only_with_its_keywords(tmp_path):
+    """The id is found from the stored config; its keywords are not in it: run.json's say which
+    were given, and a resume without them (or with others) is refused."""
+    entry: Any = Point
+    gym.register("gpfd-test/ResumedPoint-v0", entry_point=entry)
+    start(tmp_path, "gpfd-test/ResumedPoint-v0", {"steps": 20})
+    with pytest.raises(gpfd.InputError, match=r"env_kwargs are \{\}, not \{'steps': 20\}"):
+        resume(tmp_path, None)
+    assert resume(tmp_path, None, {"steps": 20}).generations == 2
