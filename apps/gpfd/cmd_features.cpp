@@ -7,6 +7,8 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <string>
+#include <utility>
 
 #include "command.hpp"
 #include "gpfd/env/simulate.hpp"
@@ -17,6 +19,7 @@
 #include "gpfd/run/checkpoint.hpp"
 #include "gpfd/run/learning_task.hpp"
 #include "gpfd/run/run_set.hpp"
+#include "gpfd/run/stored_config.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
 #include "gpfd/util/number.hpp"
@@ -150,14 +153,40 @@ int evaluate(const EvalOptions& o) {
 constexpr const char* kNoValidatedSets =
     "no validated sets (validation.candidates = 0, or unfinished)";
 
+// The features file of the run in `dir` that names its state variables: best.features, else the
+// last generation's best/generation-NNNN.features; empty when it has written neither.
+std::string namingFeaturesFile(const std::string& dir) {
+  namespace fs = std::filesystem;
+  if (fs::exists(dir + "/best.features")) return dir + "/best.features";
+  std::string last;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir + "/best", ec)) {
+    const std::string name = entry.path().filename().string();
+    if (!name.starts_with("generation-") || !name.ends_with(".features")) continue;
+    // generation-0009 before generation-0010 before generation-10000.
+    const std::string lastName = fs::path(last).filename().string();
+    if (last.empty() || std::pair(name.size(), name) > std::pair(lastName.size(), lastName)) {
+      last = entry.path().string();
+    }
+  }
+  return last;
+}
+
 // The front table of the run in `dir` (which must hold its checkpoint.json); empty when the run
-// has no validated sets.
+// has no validated sets. The state variables' names come from the run's features files, so that
+// a run on an environment this program cannot make (one stepped in Python by gpfd.evolve, a
+// plug-in's) shows its front as it is, nothing re-evaluated.
 std::string frontTable(const std::string& dir) {
   const std::string path = dir + "/checkpoint.json";
   if (!std::filesystem::exists(path)) throw InputError("no checkpoint.json: not a run", dir);
   const auto checkpoint = run::parseCheckpoint(readFile(path), path);
   if (checkpoint.validation.sets.empty()) return {};
-  const auto config = run::parseExperimentConfig(checkpoint.config, path + " (config)");
+  const std::string named = namingFeaturesFile(dir);
+  if (!named.empty()) {
+    return run::formatFrontTable(checkpoint.validation.sets,
+                                 expr::readFeaturesFile(named).variables);
+  }
+  const auto config = run::parseStoredExperimentConfig(checkpoint.config, path + " (config)");
   const auto names = run::LearningTask(config, run::LearningTask::Budget::Trial).stateNames();
   return run::formatFrontTable(checkpoint.validation.sets, names);
 }

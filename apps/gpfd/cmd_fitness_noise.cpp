@@ -8,6 +8,7 @@
 #include "gpfd/experiments/fitness_noise.hpp"
 #include "gpfd/gp/fitness_cache.hpp"
 #include "gpfd/run/checkpoint.hpp"
+#include "gpfd/run/stored_config.hpp"
 #include "gpfd/service/resources.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
@@ -26,7 +27,7 @@ struct NoiseOptions {
 int fitnessNoise(const NoiseOptions& o) {
   const std::string path = o.run + "/checkpoint.json";
   const auto checkpoint = run::parseCheckpoint(readFile(path), path);
-  const auto config = run::parseExperimentConfig(checkpoint.config, path + " (config)");
+  const auto config = run::parseStoredExperimentConfig(checkpoint.config, path + " (config)");
   // The distinct genomes of the final population that did not diverge.
   std::vector<expr::Genome> genomes;
   std::set<std::string> keys;

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import csv
 import functools
+import hashlib
 import json
 import math
 import os
@@ -171,7 +172,8 @@ def _use_workers(evaluator: Evaluator | None, threads: int, executor: Any, env: 
 
 def _resumed_env(resume: str | os.PathLike, env: Any, env_kwargs: dict | None) -> Evaluator | None:
     """The evaluator of the run in `resume` where it is on an environment stepped in Python: of
-    `env` (and `env_kwargs`) when given, else of its Gymnasium id or EnvPool task as stored."""
+    `env` (and `env_kwargs`) when given, else of its Gymnasium id or EnvPool task as stored (with
+    `env_kwargs`)."""
     config = Path(resume, "config.toml")
     if not config.is_file():
         return None  # The C++ side says what is missing.
@@ -181,8 +183,6 @@ def _resumed_env(resume: str | os.PathLike, env: Any, env_kwargs: dict | None) -
             raise TypeError(f"the run in {resume} is on {stored}, not {env!r}")
         return None
     if env is None:
-        if env_kwargs:
-            raise TypeError("env_kwargs needs env=")
         if stored.startswith("python:"):
             raise TypeError(
                 f"the run in {resume} is on {stored.removeprefix('python:')}, stepped in Python: "
@@ -194,6 +194,105 @@ def _resumed_env(resume: str | os.PathLike, env: Any, env_kwargs: dict | None) -
         raise TypeError(f"the run in {resume} is on {stored}, not {name}")
     user_env.register(stored, factory)
     return Evaluator(stored, factory, 1)
+
+
+def _space_text(space: Any) -> str:
+    """A space in full: its kind, shape, dtype and every bound (str abbreviates long ones)."""
+    parts = [type(space).__name__, repr(getattr(space, "shape", None)), str(space.dtype)]
+    for attribute in ("low", "high", "n", "start", "nvec"):
+        value = getattr(space, attribute, None)
+        if value is not None:
+            parts.append(f"{attribute}={np.asarray(value).tolist()!r}")
+    return " ".join(parts)
+
+
+def _json_text(value: Any) -> str:
+    """A keyword argument JSON has no form for: its repr, or where that names an address (an
+    object without a repr of its own) its type, the same in every session."""
+    text = repr(value)
+    return f"<{type(value).__module__}.{type(value).__qualname__}>" if " at 0x" in text else text
+
+
+def _task_fingerprint(env: Any, env_kwargs: dict | None, evaluator: Evaluator) -> dict[str, Any]:
+    """run.json's "env" for an environment stepped in Python: what a resume must find the same
+    (_check_resumed_task). ``callable``: the module and qualified name of the callable (of a
+    functools.partial, its function; a Gymnasium id or EnvPool task as given); ``kwargs``:
+    ``env_kwargs`` with a partial's own keywords, as JSON (_json_text where JSON has none); the
+    spaces of one environment made now, as text, and ``spaces``, a SHA-256 of both in full
+    (kinds, shapes, dtypes, every bound)."""
+    kwargs: dict[str, Any] = {}
+    if isinstance(env, str):
+        name = env
+    else:
+        target = env
+        while isinstance(target, functools.partial):
+            kwargs = {**target.keywords, **kwargs}
+            target = target.func
+        module = getattr(target, "__module__", None) or type(target).__module__
+        qualname = getattr(target, "__qualname__", None) or type(target).__qualname__
+        name = f"{module}.{qualname}"
+    kwargs.update(env_kwargs or {})
+    fingerprint: dict[str, Any] = {
+        "callable": name,
+        "kwargs": json.loads(json.dumps(kwargs, sort_keys=True, default=_json_text)),
+    }
+    try:
+        made = evaluator.factory()
+    except Exception:  # The run says what is wrong with the environment when it makes one.
+        return fingerprint
+    try:
+        texts = [_space_text(made.observation_space), _space_text(made.action_space)]
+    finally:
+        made.close()
+    fingerprint["observation_space"] = str(made.observation_space)
+    fingerprint["action_space"] = str(made.action_space)
+    digest = hashlib.sha256("\n".join(texts).encode()).hexdigest()
+    fingerprint["spaces"] = "sha256:" + digest
+    return fingerprint
+
+
+def _stored_fingerprint(resume: str | os.PathLike) -> tuple[Path, dict[str, Any]] | None:
+    """run.json's "env" of the run (or of the first run of the set) in `resume`, with the file;
+    None where there is none (a run of an earlier gpfd, or not on an environment stepped in
+    Python)."""
+    for path in (Path(resume, "run.json"), *sorted(Path(resume).glob("run-*/run.json"))):
+        if path.is_file():
+            stored = json.loads(path.read_text()).get("env")
+            return (path, stored) if isinstance(stored, dict) else None
+    return None
+
+
+def _check_resumed_task(resume: str | os.PathLike, now: dict[str, Any]) -> None:
+    """InputError naming each difference between the task a run in `resume` was started on (its
+    run.json's "env") and the one given to resume it: a resumed run continues only the same
+    task."""
+    found = _stored_fingerprint(resume)
+    if found is None:
+        return
+    path, then = found
+    differences = []
+    if then.get("callable") != now.get("callable"):
+        differences.append(f"the environment is {now.get('callable')}, not {then.get('callable')}")
+    if then.get("kwargs") != now.get("kwargs"):
+        differences.append(
+            f"env_kwargs are {now.get('kwargs')}, not {then.get('kwargs')} (with a "
+            "functools.partial's own keywords)"
+        )
+    if "spaces" in then and "spaces" in now and then["spaces"] != now["spaces"]:
+        named = [
+            f"its {key} is {now.get(key)}, not {then.get(key)}"
+            for key in ("observation_space", "action_space")
+            if then.get(key) != now.get(key)
+        ]
+        differences += named or [
+            "its spaces differ in their bounds, shapes or dtypes "
+            f"(spaces {now['spaces']}, not {then['spaces']})"
+        ]
+    if differences:
+        raise InputError(
+            f"resume continues only the task the run was started on: {'; '.join(differences)}; "
+            f"give env= and env_kwargs= as the run was started with ({path})"
+        )
 
 
 def _resume_call(env: Any, env_kwargs: dict | None) -> str:
@@ -254,6 +353,21 @@ def _as_argument(error: InputError, key: str) -> InputError:
         if text.endswith(spelling):
             return InputError(text[: -len(spelling)] + f"({key}=)")
     return error
+
+
+def _budget_value(value: Any) -> str:
+    """``time_budget=`` as a config value: seconds (a finite number) or text such as "10m";
+    InputError naming the argument (``(time_budget=)``), not the config key it becomes."""
+    number = isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(
+        value, bool
+    )
+    if isinstance(value, str) or (number and math.isfinite(value)):
+        return _toml_value(value)
+    what = f"{value}" if number else f"{type(value).__name__} ({value!r})"
+    raise InputError(
+        f'time_budget must be seconds (a finite number) or text such as "10m", not {what} '
+        "(time_budget=)"
+    )
 
 
 def evolve(
@@ -322,7 +436,9 @@ def evolve(
     resume: continue the run in this directory (with its stored config; only ``generations`` may
         extend it, ``threads`` may change). A run on an environment stepped in Python needs
         ``env`` (and ``env_kwargs``) again where it was a callable; a Gymnasium id or EnvPool
-        task is found from the stored config.
+        task is found from the stored config. It continues only the same task: another
+        callable (by module and qualified name), other keyword arguments or other spaces than
+        the run's ``run.json`` records (``"env"``) is an InputError naming the difference.
     verbose: None (default): a progress bar (generation, best GP fitness, ETA; then validation
         and confirmation) when stderr is a terminal or this runs in a Jupyter notebook, otherwise
         only the run's verdict, one line (as ``run.best.meta`` holds it); True: print what
@@ -344,6 +460,9 @@ def evolve(
             raise TypeError("resume continues with the stored config; only generations may change")
         overrides: list[str] = []
         evaluator = _resumed_env(resume, env, env_kwargs)
+        if evaluator is not None:
+            given = evaluator.name if env is None or isinstance(env, str) else env
+            _check_resumed_task(resume, _task_fingerprint(given, env_kwargs, evaluator))
     else:
         overrides, evaluator = _env_overrides(env, env_kwargs)
         if evaluator is not None or env in twins.TWINS:
@@ -356,8 +475,12 @@ def evolve(
             overrides.append(f"gp.population={_whole('population', population, 1)}")
         overrides += _overrides(set)
         if time_budget is not None:
-            overrides += _overrides({"time_budget": time_budget})
+            overrides.append(f"time_budget={_budget_value(time_budget)}")
     _use_workers(evaluator, threads, executor, env)
+    fingerprint = ""  # run.json's "env" of each run started: what a resume checks.
+    if evaluator is not None and resume is None:
+        given = evaluator.name if isinstance(env, str) else env
+        fingerprint = json.dumps(_task_fingerprint(given, env_kwargs, evaluator))
 
     bar = progress.EvolveBar() if progress.shows_bar(verbose) else None
 
@@ -384,6 +507,7 @@ def evolve(
                 out_name,
                 _resume_call(env, env_kwargs),
                 lambda: watch.seen,
+                fingerprint,
             )
         except InputError as e:
             if time_budget is None:

@@ -306,7 +306,7 @@ nb::tuple evolve(const std::string& config, const std::vector<std::string>& over
                  std::optional<int> generations, std::optional<int> runs, nb::object onGeneration,
                  nb::object evaluate, std::optional<bool> verbose, nb::object observer,
                  const std::string& outName, const std::string& resumeCommand,
-                 nb::object interrupted) {
+                 nb::object interrupted, const std::string& envJson) {
   service::EvolveRequest request;
   request.config = config;
   request.overrides = overrides;
@@ -316,6 +316,7 @@ nb::tuple evolve(const std::string& config, const std::vector<std::string>& over
   request.generations = generations;
   request.runs = runs;
   request.outName = outName;
+  request.envJson = envJson;
   if (!evaluate.is_none()) {
     // The request is copied, and the evaluator made, without the GIL: the Python object is held
     // where copies of the function do not touch its reference count.
@@ -461,11 +462,11 @@ void bindDiscovery(nb::module_& m) {
         nb::arg("runs").none(), nb::arg("on_generation").none(), nb::arg("evaluate").none(),
         nb::arg("verbose").none(), nb::arg("observer").none() = nb::none(),
         nb::arg("out_name") = "", nb::arg("resume_command") = "gpfd.evolve(resume=\"{}\")",
-        nb::arg("interrupted").none() = nb::none(),
+        nb::arg("interrupted").none() = nb::none(), nb::arg("env_json") = "",
         "Runs (or resumes) discovery through the service layer, like `gpfd evolve`; returns "
         "(results dir, finished, interruption: the text of the KeyboardInterrupt to raise when "
         "Ctrl-C stopped "
-        "it, else empty).");
+        "it, else empty). env_json: run.json's \"env\" of each run started (a JSON object).");
   m.def("trial_fitness_group", &trialFitnessGroupOf, nb::arg("config_text"), nb::arg("tasks"),
         "run::trialFitness of each (genome wire record, seed), played in one lockstep group: the "
         "evaluations' episodes share one vector environment (the worker processes' task).");

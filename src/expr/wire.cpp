@@ -38,8 +38,8 @@ class Cursor {
   std::size_t left() const { return bytes_.size() - at_; }
   void need(std::size_t n) const {
     if (left() < n) {
-      throw WireError(
-          fmt::format("the genome's bytes end early (byte {} of {})", bytes_.size(), at_ + n));
+      throw WireError(fmt::format("the genome's bytes end early ({} bytes needed, {} given)",
+                                  at_ + n, bytes_.size()));
     }
   }
 

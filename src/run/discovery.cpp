@@ -13,6 +13,7 @@
 #include "gpfd/run/learning_task.hpp"
 #include "gpfd/run/redundancy.hpp"
 #include "gpfd/run/sequential_test.hpp"
+#include "gpfd/run/stored_config.hpp"
 #include "gpfd/run/thread_evaluator.hpp"
 #include "gpfd/run/validation.hpp"
 #include "gpfd/util/atomic_file.hpp"
@@ -328,6 +329,7 @@ std::unique_ptr<Discovery> Discovery::start(const ExperimentConfig& config,
     if (!options.timeBudgetJson.empty()) {
       run["time_budget"] = nlohmann::ordered_json::parse(options.timeBudgetJson);
     }
+    if (!options.envJson.empty()) run["env"] = nlohmann::ordered_json::parse(options.envJson);
     writeFileAtomically(state->path("run.json"), run.dump(1) + "\n");
   } catch (...) {
     // Leave nothing half-made behind.
@@ -351,7 +353,7 @@ std::unique_ptr<Discovery> Discovery::resume(const DiscoveryOptions& options,
     }
     // In today's form: keys added since the run was written read as their defaults.
     const std::string text =
-        formatExperimentConfig(parseExperimentConfig(readFile(configPath), configPath));
+        formatExperimentConfig(parseStoredExperimentConfig(readFile(configPath), configPath));
     if (expected && formatExperimentConfig(*expected) != text) {
       throw InputError(
           "the config differs from the one the run was started with (see " + configPath + ")",
@@ -369,7 +371,8 @@ std::unique_ptr<Discovery> Discovery::resume(const DiscoveryOptions& options,
         "the checkpoint was written by gpfd " + checkpoint.version + ", this is " + options.version,
         checkpointPath);
   }
-  ExperimentConfig config = parseExperimentConfig(checkpoint.config, checkpointPath + " (config)");
+  ExperimentConfig config =
+      parseStoredExperimentConfig(checkpoint.config, checkpointPath + " (config)");
   // The stored config in today's form: keys added since the run was written read as their
   // defaults, so that a run of an earlier gpfd resumes (and its MPI workers read the text back).
   const std::string stored = formatExperimentConfig(config);

@@ -17,6 +17,7 @@
 #include "gpfd/run/learner_choice.hpp"
 #include "gpfd/run/plugin.hpp"
 #include "gpfd/run/sequential_test.hpp"
+#include "gpfd/run/stored_config.hpp"
 #include "gpfd/util/atomic_file.hpp"
 #include "gpfd/util/error.hpp"
 #include "gpfd/util/number.hpp"
@@ -357,13 +358,35 @@ void validateGp(const gp::GpConfig& gp, const Place& place) {
   }
 }
 
-void validateAt(const ExperimentConfig& c, const Place& place) {
+// What reading a config does with the plug-ins it names: a config the user gives loads them; one
+// read back from a results directory (run/stored_config.hpp) requires them loaded already.
+enum class PluginLoading { Load, RequireLoaded };
+
+// InputError unless the plug-in `plugin` (a path) is loaded already.
+void requireLoaded(const std::string& plugin, const Place& place) {
+  std::error_code ec;
+  const std::string file = std::filesystem::canonical(plugin, ec).string();
+  const auto loaded = loadedPlugins();
+  require(!ec && std::find(loaded.begin(), loaded.end(), file) != loaded.end(),
+          "the config names the plug-in " + plugin +
+              ", which is not loaded: a config read back from a results directory (a resume, a "
+              "checkpoint) loads no code; give the plug-in again to load it (gpfd --plugin " +
+              plugin + " ...)",
+          place("", "plugins"));
+}
+
+void validateAt(const ExperimentConfig& c, const Place& place,
+                PluginLoading plugins = PluginLoading::Load) {
   require(isRunName(c.name),
           "name must be letters, digits, '.', '_' and '-', not starting with '.' (it names the "
           "results directory), not '" +
               c.name + "'",
           place("", "name"));
   for (const auto& plugin : c.plugins) {
+    if (plugins == PluginLoading::RequireLoaded) {
+      requireLoaded(plugin, place);
+      continue;
+    }
     try {
       loadPlugin(plugin);
     } catch (const InputError& e) {
@@ -512,8 +535,10 @@ void keepChoicesWith(ExperimentConfig& config, const Params& given) {
   }
 }
 
-ExperimentConfig parseExperimentConfig(const std::string& text, const std::string& source,
-                                       const std::vector<std::string>& overrides) {
+namespace {
+
+ExperimentConfig parseConfig(const std::string& text, const std::string& source,
+                             const std::vector<std::string>& overrides, PluginLoading plugins) {
   toml::table root = io::parseToml(text, source);
   for (const auto& o : overrides) io::applyOverride(root, o);
   ExperimentConfig config;
@@ -533,15 +558,33 @@ ExperimentConfig parseExperimentConfig(const std::string& text, const std::strin
   for (auto& plugin : config.plugins) {
     plugin = std::filesystem::absolute(base / plugin).lexically_normal().string();
   }
-  validateAt(config, [&reader](const std::string& section, const std::string& key) {
-    return reader.where(section, key);
-  });
+  validateAt(
+      config,
+      [&reader](const std::string& section, const std::string& key) {
+        return reader.where(section, key);
+      },
+      plugins);
   return config;
+}
+
+}  // namespace
+
+ExperimentConfig parseExperimentConfig(const std::string& text, const std::string& source,
+                                       const std::vector<std::string>& overrides) {
+  return parseConfig(text, source, overrides, PluginLoading::Load);
 }
 
 ExperimentConfig loadExperimentConfig(const std::string& path,
                                       const std::vector<std::string>& overrides) {
   return parseExperimentConfig(readFile(path), path, overrides);
+}
+
+ExperimentConfig parseStoredExperimentConfig(const std::string& text, const std::string& source) {
+  return parseConfig(text, source, {}, PluginLoading::RequireLoaded);
+}
+
+ExperimentConfig loadStoredExperimentConfig(const std::string& path) {
+  return parseStoredExperimentConfig(readFile(path), path);
 }
 
 std::string formatExperimentConfig(const ExperimentConfig& config) {

@@ -9,6 +9,7 @@
 
 #include "gpfd/expr/genome.hpp"
 #include "gpfd/run/learner_choice.hpp"
+#include "gpfd/run/stored_config.hpp"
 #include "gpfd/run/time_budget.hpp"
 #include "gpfd/service/configs.hpp"
 #include "gpfd/service/resources.hpp"
@@ -91,7 +92,7 @@ std::optional<run::ExperimentConfig> expectedConfig(const EvolveRequest& request
   auto expected = loadConfig(request.config, {});
   const std::string stored = dir + "/config.toml";
   if (!fs::exists(stored)) return expected;
-  const auto chosen = run::loadExperimentConfig(stored);
+  const auto chosen = run::loadStoredExperimentConfig(stored);
   for (const auto& candidate : run::learnerCandidates(expected)) {
     for (const auto& [key, ignored] : candidate) {
       const auto value = chosen.learnerParams.find(key);
@@ -170,7 +171,7 @@ EvolveResult resume(const EvolveRequest& request, run::DiscoveryOptions options,
     int runs = 0;
     run::parseRunsJson(readFile(runsJson), runsJson, seed, runs);
     const std::string configPath = dir + "/config.toml";
-    const auto base = run::loadExperimentConfig(configPath);
+    const auto base = run::loadStoredExperimentConfig(configPath);
     // Compared in today's form: keys added since the runs were written read as their defaults.
     if (expected && run::formatExperimentConfig(*expected) != run::formatExperimentConfig(base)) {
       throw InputError(
@@ -217,6 +218,7 @@ EvolveResult evolve(const EvolveRequest& request, EvolveProgress& progress,
   options.makeEvaluator = request.makeEvaluator;
   options.trialRunner = request.trialRunner;
   options.processes = request.processes;
+  options.envJson = request.envJson;
   if (!request.resume.empty()) return resume(request, options, progress, stop);
 
   auto overrides = request.overrides;

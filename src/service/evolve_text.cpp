@@ -138,11 +138,17 @@ void EvolveText::runFinished(const run::RunOutcome& o, const std::string& dir,
                     label, o.confirmed ? "validation and confirmation" : "validation",
                     meanSe(o.original), dir));
   } else {
-    // The score's name as best.features gives it: confirmed (unbiased) or selection (biased).
+    // The score's name as best.features gives it: confirmed (unbiased) or selection (biased);
+    // a confirmation that found the winner no better than the original variables did not
+    // confirm it.
+    const bool better = o.vsOriginal.p < 0.05 && o.vsOriginal.meanDifference > 0.0;
     o_.out(fmt::format(
         "{}{}: {} vs original {} on {} paired fresh trials: {}; features in {}/best.features\n",
-        label, o.confirmed ? "confirmed" : "selection", meanSe(o.winner), meanSe(o.original),
-        o.winner.n,
+        label,
+        !o.confirmed ? "selection"
+        : better     ? "confirmed"
+                     : "not confirmed",
+        meanSe(o.winner), meanSe(o.original), o.winner.n,
         run::comparisonVerdict(o.vsOriginal, "the original variables",
                                o.confirmed ? "the confirmation seeds" : "the validation seeds"),
         dir));

@@ -3,6 +3,7 @@
 // truncated, corrupt or other-version bytes.
 #include "gpfd/expr/wire.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -163,6 +164,11 @@ TEST(Wire, TruncationAtEveryByteIsAnError) {
     EXPECT_FALSE(errorOf(bytes.substr(0, n)).empty()) << n << " bytes";
   }
   EXPECT_NE(errorOf(bytes + "x").find("1 bytes follow"), std::string::npos);
+  // The message says how many bytes the record needed and how many it was given.
+  const std::string what = errorOf(bytes.substr(0, bytes.size() - 1));
+  EXPECT_NE(what.find(fmt::format("({} bytes needed, {} given)", bytes.size(), bytes.size() - 1)),
+            std::string::npos)
+      << what;
 }
 
 TEST(Wire, BadFieldsAreErrors) {

@@ -1,5 +1,6 @@
 """The wheel's command line: `pip install .` installs the tool `gpfd` beside the interpreter."""
 
+import csv
 import importlib.metadata
 import os
 import subprocess
@@ -10,6 +11,7 @@ import pytest
 
 import gpfd
 from conftest import REPO
+from point_env import Point
 
 
 def installed_cli() -> Path:
@@ -40,7 +42,8 @@ def test_the_command_is_the_modules_build():
 
 def test_the_command_lists_the_environments():
     listed = run("envs")
-    for name in gpfd._core.env_names():
+    # The C++ ones: those registered from Python by tests run before are this process's only.
+    for name in filter(gpfd.registry.is_builtin, gpfd._core.env_names()):
         assert f"\n{name}: " in "\n" + listed
 
 
@@ -69,3 +72,41 @@ def test_the_command_loads_plugins():
     if os.environ.get("GPFD_DEBIAN_LIBS_HIDDEN"):
         pytest.skip("the test plug-in links Debian's libraries, hidden here (scripts/test-wheel)")
     assert "walk: a point on a line" in run("--plugin", plugin, "envs")
+
+
+@pytest.mark.parametrize("env", ["callable", "gymnasium"])
+def test_the_front_of_a_run_on_an_environment_stepped_in_python(tmp_path, env):
+    """`gpfd features show DIR --front` on a run of gpfd.evolve whose environment the command
+    cannot make (a callable's python:NAME, Gymnasium's own as gymnasium:ID): the validated front
+    as the run left it, its variables named as the run's features files name them."""
+    small = {
+        "learner.params.updates": 2,
+        "learner.params.episodes": 2,
+        "learner.params.max_episode_steps": 20,
+        "fitness.trials": 1,
+        "fitness.state_sample": 16,
+        "validation.candidates": 2,
+        "validation.seeds": 2,
+        "validation.confirm_seeds": 2,
+        "validation.confirm_looks": 1,
+        "validation.confirm_params.updates": 2,
+    }
+    gpfd.evolve(
+        "cartpole-quick",
+        env=Point if env == "callable" else "CartPole-v1",
+        native=False,
+        seed=1,
+        population=4,
+        generations=1,
+        threads=1,
+        set=small,
+        out=tmp_path / "run",
+        verbose=False,
+    )
+    shown = run("features", "show", tmp_path / "run", "--front")
+    with (tmp_path / "run/front.csv").open(newline="") as f:
+        front = list(csv.DictReader(f))
+    assert shown.startswith("nodes  features  selection"), shown
+    assert len(shown.splitlines()) == len(front) + 1, (shown, front)
+    for row in front:  # Each set's first expression, as front.csv has it.
+        assert row["expressions"].split(" ; ")[0] in shown, (row, shown)

@@ -12,6 +12,7 @@ again; a send that failed, sent again; none possible, a WorkerError) is also tes
 process with a double of mpi4py's pool (Losing), without MPI."""
 
 import ctypes
+import json
 import os
 import shutil
 import subprocess
@@ -123,6 +124,7 @@ class Losing(ThreadPoolExecutor):
         super().__init__(2)
         self.lost, self.left, self.refused, self.count = lost, left, refused, 0
         self.held: list[Future] = []
+        self.held_calls: list[tuple] = []  # (fn, args) of each held future, in order.
 
     def submit(self, fn, /, *args, **kwargs) -> Future:
         n, self.count = self.count, self.count + 1
@@ -136,8 +138,15 @@ class Losing(ThreadPoolExecutor):
             if n in self.lost:
                 future.set_running_or_notify_cancel()
             self.held.append(future)
+            self.held_calls.append((fn, args))
             return future
         return super().submit(fn, *args, **kwargs)
+
+
+def task_of(call: tuple) -> int:
+    """The task number (echo's value) of a call that gpfd._jobs.run makes of echo."""
+    _, (_key, _payload, _function, value, *_) = call
+    return value
 
 
 def echo(config_text: str, value: int, delay: float = 0.01) -> tuple[str, int]:
@@ -164,41 +173,62 @@ def quick_loss(monkeypatch):
         cache.clear()
 
 
+# These tests assert what holds whatever the timing (a loaded CI machine may leave a quick task
+# silent past 0.2 s, and then send it again too): every task answered once and in order, with
+# the result it gives anywhere, and the lost (or unsent) task sent again at least once; never how
+# many copies were sent.
+
+
 def test_a_task_lost_with_its_worker_is_sent_again_and_its_first_result_taken(quick_loss):
     jobs = _jobs.Jobs("python:mpi-lost-a", Point)
     with Losing(lost={1}) as executor:
         thread, results = in_thread(jobs.map(executor, echo, "t", [(i,) for i in range(5)], 2))
-        thread.join(10)
-        assert results == [("t", i) for i in range(5)]
-        assert jobs.resent == 1 and executor.count == 6
+        thread.join(60)
+        assert not thread.is_alive() and results == [("t", i) for i in range(5)]
+        assert jobs.resent >= 1 and executor.count >= 6  # Task 1 at least once more.
+        assert task_of(executor.held_calls[0]) == 1
         assert executor.held[0].running()  # The lost copy, given up, not waited for.
+    resent = jobs.resent
     with ThreadPoolExecutor(2) as executor:  # Never silent: a slow task is waited for.
         work = [(0,), (1, 1.0)]  # 1 s: five times the silence that makes a task lost.
         assert list(jobs.map(executor, echo, "u", work, 2)) == [("u", 0), ("u", 1)]
-        assert jobs.resent == 1
+        assert jobs.resent == resent  # Whatever the timing: such an executor never loses one.
 
 
 def test_with_every_worker_lost_a_lost_task_has_one_copy_queued_and_the_round_waits(quick_loss):
     jobs = _jobs.Jobs("python:mpi-lost-b", Point)
     with Losing(lost={1}, left=4) as executor:
         thread, results = in_thread(jobs.map(executor, echo, "t", [(i,) for i in range(4)], 2))
-        thread.join(2.0)  # Ten times the silence that makes a task lost.
-        assert thread.is_alive() and jobs.resent == 1 and executor.count == 5
-        queued = executor.held[1]  # The copy sent again: no worker took it.
-        assert not queued.running() and not queued.done()
-        queued.set_running_or_notify_cancel()
-        queued.set_result(("t", 1))  # A worker came back and played it.
-        thread.join(10)
-        assert results == [("t", i) for i in range(4)]
+        # The silence that makes a task lost grows with the slowest task seen (a loaded machine
+        # slows them all): wait for the copy however long that takes.
+        deadline = time.monotonic() + 60
+        while jobs.resent == 0 and time.monotonic() < deadline:
+            time.sleep(0.05)
+        thread.join(0.5)
+        # The round waits: the lost task's copy is queued, no worker to take it. A quick task
+        # slowed past the silence by a loaded machine may have a queued copy too (it answers
+        # itself); task 1 has exactly one, never a copy on a copy still queued.
+        assert thread.is_alive() and jobs.resent >= 1
+        queued = [
+            (future, call)
+            for future, call in zip(executor.held, executor.held_calls, strict=True)
+            if not future.running() and not future.done()
+        ]
+        assert [task_of(call) for _, call in queued].count(1) == 1, queued
+        for future, (fn, args) in queued:  # Workers came back and played them.
+            if future.set_running_or_notify_cancel():
+                future.set_result(fn(*args))
+        thread.join(60)
+        assert not thread.is_alive() and results == [("t", i) for i in range(4)]
 
 
 def test_a_task_that_could_not_be_sent_to_a_dead_worker_is_sent_again(quick_loss, capfd):
     jobs = _jobs.Jobs("python:mpi-lost-c", Point)
     with Losing(lost=set(), refused={1, 4}) as executor:
         thread, results = in_thread(jobs.map(executor, echo, "t", [(i,) for i in range(4)], 2))
-        thread.join(10)
-        assert results == [("t", i) for i in range(4)]
-        assert jobs.resent == 2 and executor.count == 6  # Task 1 failed twice.
+        thread.join(60)
+        assert not thread.is_alive() and results == [("t", i) for i in range(4)]
+        assert jobs.resent >= 2 and executor.count >= 6  # Both failed sends sent again.
     assert capfd.readouterr().err.count("could not send a task") == 1  # Said once.
 
 
@@ -271,10 +301,14 @@ def test_mpi4py_job_ended_by_a_dead_worker_resumes_to_the_same_run(tmp_path):
     assert done.returncode != 0
     assert (tmp_path / "mpi-flags/died").exists()
     assert not (tmp_path / "mpi/validation.csv").exists()  # The run stopped in its generations.
+    # Resumed with the keywords it was started with (a resume continues only the same task):
+    # its parent was the MPI script's process; its worker has died already (mpi-flags/died).
+    started = json.loads((tmp_path / "mpi/run.json").read_text())["env"]["kwargs"]
+    assert started["directory"] == str(tmp_path / "mpi-flags")
     run = gpfd.evolve(
         resume=tmp_path / "mpi",
         env=DiesOnce,
-        env_kwargs={"directory": str(tmp_path / "mpi-flags"), "parent": os.getpid()},
+        env_kwargs=started,
         threads=2,
         verbose=False,
     )

@@ -59,7 +59,9 @@ def test_without_a_terminal_only_the_verdict_is_printed(tmp_path, capfd):
     out, err = capfd.readouterr()
     assert err == "" and out.count("\n") == 1, out
     # The verdict as best.features' meta holds it: the confirmed (or selection) score.
-    assert out.startswith(("confirmed: ", "selection: ", "no discovered feature set")), out
+    assert out.startswith(
+        ("confirmed: ", "not confirmed: ", "selection: ", "no discovered feature set")
+    ), out
     assert f"{tmp_path / 'run'}/best.features" in out, out
     gpfd.evolve(**TINY, out=tmp_path / "quiet", verbose=False)
     assert capfd.readouterr() == ("", "")

@@ -31,6 +31,14 @@ def test_a_bad_budget_is_an_input_error(tmp_path, budget):
         gpfd.evolve("cartpole-quick", time_budget=budget, out=tmp_path / "run")
 
 
+@pytest.mark.parametrize("budget", [float("nan"), float("inf"), b"10", [60], True])
+def test_a_budget_of_no_number_names_the_argument(tmp_path, budget):
+    """Not a finite number nor text: named as the argument given, not as a config value."""
+    with pytest.raises(gpfd.InputError, match=r"^time_budget must be .*\(time_budget=\)$") as e:
+        gpfd.evolve("cartpole-quick", time_budget=budget, out=tmp_path / "run")
+    assert "config" not in str(e.value)
+
+
 @pytest.mark.parametrize("budget", ["abc", 0.01])
 def test_a_budget_error_names_the_argument_not_the_command_line(tmp_path, budget):
     """A bad budget, and one too short for the runs asked for, name time_budget=, the argument the

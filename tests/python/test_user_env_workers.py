@@ -51,8 +51,9 @@ def resets(directory: Path) -> dict[int, int]:
 
 
 def run_files(directory: Path) -> dict[str, str]:
-    """A run's results, but timings (generations.csv's last column, the checkpoint) and the
-    number of workers (run.json's threads)."""
+    """A run's results, but timings (generations.csv's last column, the checkpoint), the
+    number of workers (run.json's threads) and the environment's keyword arguments (run.json's
+    env.kwargs: the tests give each run a directory of its own)."""
     files = {}
     for path in sorted(directory.rglob("*")):
         name = str(path.relative_to(directory))
@@ -62,7 +63,10 @@ def run_files(directory: Path) -> dict[str, str]:
         if name == "generations.csv":
             text = "\n".join(line.rsplit(",", 1)[0] for line in text.splitlines())
         if name == "run.json":
-            text = json.dumps({k: v for k, v in json.loads(text).items() if k != "threads"})
+            info = {k: v for k, v in json.loads(text).items() if k != "threads"}
+            if isinstance(info.get("env"), dict):
+                info["env"] = {k: v for k, v in info["env"].items() if k != "kwargs"}
+            text = json.dumps(info)
         files[name] = text
     return files
 

@@ -57,7 +57,21 @@ generations = 2
   const auto r = runGpfd("evolve " + config + " --quiet --threads 1 --out " + dir);
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(readText(dir + "/config.toml").find(GPFD_TEST_PLUGIN), std::string::npos);
-  const auto resumed = runGpfd("evolve --resume " + dir + " --generations 3 --quiet");
+  // A results directory is data, not code: its config's plug-ins load only when given again.
+  for (const std::string& command : {"evolve --resume " + dir + " --generations 3 --quiet",
+                                     "fitness-noise " + dir + " --pairs 1 --replications 2"}) {
+    const auto refused = runGpfd(command);
+    EXPECT_EQ(refused.status, 2) << command << "\n" << refused.output;
+    EXPECT_NE(refused.output.find("the config names the plug-in " + std::string(GPFD_TEST_PLUGIN) +
+                                  ", which is not loaded"),
+              std::string::npos)
+        << command << "\n"
+        << refused.output;
+  }
+  // Its front is shown as the run left it, without the plug-in: nothing is run.
+  const auto front = runGpfd("features show " + dir + " --front");
+  EXPECT_EQ(front.status, 0) << front.output;
+  const auto resumed = runGpfd(kPlugin + " evolve --resume " + dir + " --generations 3 --quiet");
   EXPECT_EQ(resumed.status, 0) << resumed.output;
   EXPECT_EQ(runGpfd("evolve " + config + " --set plugins=[] --quiet --out " + dir + "x").status, 2);
 }

@@ -220,6 +220,30 @@ TEST(EvolveService, ARunThatFailsInItsFirstGenerationLeavesNoDirectory) {
   }
 }
 
+// What a validated run returned opens its line: "confirmed" only where the confirmation found the
+// winner better than the original variables.
+TEST(EvolveText, AWinnerTheConfirmationFoundNoBetterIsNotConfirmed) {
+  run::RunOutcome outcome;
+  outcome.validated = true;
+  outcome.confirmed = true;
+  outcome.winner = {20, 21.0, 2.0, 0.0};
+  outcome.original = {20, 20.0, 2.0, 0.0};
+  const auto line = [&](double difference, double p) {
+    outcome.vsOriginal = {20, difference, 0.5, p};
+    std::string text;
+    service::EvolveText progress({[&](const std::string& s) { text += s; }, [](auto&) {}});
+    progress.runFinished(outcome, "dir", "");
+    return text;
+  };
+  EXPECT_EQ(line(1.0, 0.001).rfind("confirmed: 21 +- ", 0), 0u) << line(1.0, 0.001);
+  EXPECT_EQ(line(1.0, 0.3).rfind("not confirmed: 21 +- ", 0), 0u) << line(1.0, 0.3);
+  EXPECT_NE(line(1.0, 0.3).find("not significantly different from the original variables"),
+            std::string::npos);
+  EXPECT_EQ(line(-1.0, 0.001).rfind("not confirmed: ", 0), 0u) << line(-1.0, 0.001);
+  outcome.confirmed = false;
+  EXPECT_EQ(line(1.0, 0.3).rfind("selection: ", 0), 0u) << line(1.0, 0.3);
+}
+
 TEST(EvolveText, DurationsRoundToTheUnitShown) {
   EXPECT_EQ(service::formatDuration(45.2), "45s");
   EXPECT_EQ(service::formatDuration(89.6), "1m30s");

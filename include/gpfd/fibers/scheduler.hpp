@@ -33,8 +33,9 @@ class Scheduler {
   // nest: logic_error from within a job.
   static std::vector<std::exception_ptr> run(std::size_t n,
                                              const std::function<void(std::size_t)>& job);
-  // From a job: suspends it until `ready()` (called on the thread's stack) is true; returns at
-  // once when it is. Outside a job: logic_error.
+  // From a job: suspends it until `ready()` is true; returns at once when it is. `ready()` is
+  // called first on the job's fiber (before it suspends), then by the scheduler on the thread's
+  // stack each time it looks for a fiber to resume. Outside a job: logic_error.
   static void waitUntil(const std::function<bool()>& ready);
   // Calls `f` on the thread's own stack: from a job, with the job suspended meanwhile (and no other
   // job running), f's exception rethrown in the job; outside a job, directly.

@@ -64,6 +64,10 @@ struct DiscoveryOptions {
   // The learner's settings tried and chosen (run/learner_choice.hpp), as JSON: run.json's
   // "learner_choice"; empty: none.
   std::string learnerChoiceJson;
+  // What the front end knows of the task beyond the config, as a JSON object: run.json's "env"
+  // (gpfd.evolve's fingerprint of an environment stepped in Python, which a resume checks);
+  // empty: none.
+  std::string envJson;
 };
 
 // The evaluators of successive halving's longer rungs (fitnessRungs), shortest first: made by

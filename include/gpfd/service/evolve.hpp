@@ -32,6 +32,8 @@ struct EvolveRequest {
   // name. A plain name (run::isRunName), else InputError.
   std::string outName;
   int processes = 1;  // MPI processes, recorded in run.json when above 1.
+  // run.json's "env" of each run started (run::DiscoveryOptions::envJson); empty: none.
+  std::string envJson;
 };
 
 // What the request sees of a run while it goes. `label` names a run within a set ("[run 2/3] "),
