@@ -466,7 +466,7 @@ def evolve(
     else:
         overrides, evaluator = _env_overrides(env, env_kwargs)
         if evaluator is not None or env in twins.TWINS:
-            out_name = user_env.run_name(evaluator.name if evaluator is not None else env)
+            out_name = user_env.run_name(evaluator.name if evaluator is not None else str(env))
             if config is None:
                 config = user_env.DEFAULT_CONFIG
         if seed is not None:

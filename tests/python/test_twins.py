@@ -37,6 +37,7 @@ def _actions(env: gym.Env, rng: np.random.Generator, adversarial: bool) -> Any:
     if not adversarial:
         return space.sample()
     pick = rng.random()
+    assert isinstance(space, gym.spaces.Box)
     low, high = float(space.low[0]), float(space.high[0])
     value = [low, high, 0.0, low * 3, high * 1e6, float("nan"), rng.uniform(low, high)][
         int(rng.integers(7))
@@ -155,7 +156,7 @@ def test_a_continuous_action_of_the_wrong_shape_or_type_is_a_clear_error(task):
 def test_keywords_of_the_task_are_taken_and_others_refused():
     ours = gym.make("gpfd/Pendulum-v1", g=9.81)
     theirs = gym.make("Pendulum-v1", g=9.81)
-    assert _same(ours.reset(seed=2)[0], theirs.reset(seed=2)[0], "reset") is None
+    _same(ours.reset(seed=2)[0], theirs.reset(seed=2)[0], "reset")
     action = np.array([1.5], dtype=np.float32)
     for _ in range(50):
         _same(ours.step(action)[0], theirs.step(action)[0], "g=9.81")
@@ -208,7 +209,7 @@ def test_the_vector_form_steps_as_sync_vector_env_in_every_autoreset_mode(task, 
         done = gyms[2] | gyms[3]
         ended += int(done.sum())
         if mode == "Disabled" and done.any():
-            seeds = [int(rng.integers(1000)) if d else None for d in done]
+            seeds: Any = [int(rng.integers(1000)) if d else None for d in done]
             options = {"reset_mask": done}
             _same(
                 ours.reset(seed=seeds, options=options)[0],
@@ -230,7 +231,7 @@ ONE_EPISODE = {
 def test_fitness_on_the_twin_plays_the_episodes_gymnasium_plays(task, capsys):
     """With one episode per update the learner's arithmetic is the same on both paths, so the
     fitness is equal only if every episode is (the seeds, actions, rewards and observations)."""
-    dim = gym.make(task).observation_space.shape[0]
+    (dim,) = gym.make(task).observation_space.shape or (0,)
     names = " ".join(f"x{i}" for i in range(dim))
     fs = gpfd.FeatureSet.parse(f"# variables: {names}\nx0\nx1 * x{dim - 1}\n")
     native = gpfd.fitness(fs, env=task, set=ONE_EPISODE, seed=4)
@@ -242,7 +243,13 @@ def test_fitness_on_the_twin_plays_the_episodes_gymnasium_plays(task, capsys):
 
 
 def test_a_run_on_an_id_names_the_twin_or_gymnasiums_own(tmp_path, capsys):
-    small = {"seed": 1, "population": 4, "generations": 1, "set": ONE_EPISODE, "verbose": False}
+    small: dict[str, Any] = {
+        "seed": 1,
+        "population": 4,
+        "generations": 1,
+        "set": ONE_EPISODE,
+        "verbose": False,
+    }
     twin = gpfd.evolve(env="CartPole-v1", out=tmp_path / "twin", threads=1, **small)
     assert "name = 'CartPole-v1'" in (twin.dir / "config.toml").read_text()
     python = gpfd.evolve(
