@@ -20,7 +20,7 @@ from gymnasium.vector.utils import batch_space
 
 from gpfd import _core
 from gpfd.twins import TWINS, reference, seed_words, twin_params
-from gpfd.vector import parse_autoreset_mode, with_mask
+from gpfd.vector import lane_seeds, parse_autoreset_mode, with_mask
 
 _MODES = {
     AutoresetMode.NEXT_STEP: "next_step",
@@ -65,14 +65,7 @@ class TwinVectorEnv(VectorEnv):
         """seed: None, an int (instance i gets seed + i) or one seed (or None) per instance.
         options: ``{"reset_mask": bool array}`` resets only those instances."""
         super().reset(seed=seed if isinstance(seed, int) else None)
-        if seed is None:
-            seeds: list[int | None] = [None] * self.num_envs
-        elif isinstance(seed, (int, np.integer)):
-            seeds = [int(seed) + i for i in range(self.num_envs)]
-        else:
-            seeds = list(seed)
-            if len(seeds) != self.num_envs:
-                raise ValueError(f"expected {self.num_envs} seeds, got {len(seeds)}")
+        seeds = lane_seeds(seed, self.num_envs)
         mask: list[bool] = []
         if options and "reset_mask" in options:
             mask = [bool(m) for m in np.asarray(options["reset_mask"], dtype=bool)]

@@ -53,6 +53,19 @@ def with_mask(info: dict[str, Any], key: str, values: Any, present: np.ndarray) 
     return info
 
 
+def lane_seeds(seed: Any, num_envs: int) -> list[int | None]:
+    """Each instance's seed as SyncVectorEnv takes them: None for all, an int (instance i gets
+    seed + i) or one seed (or None) per instance; ValueError for a list of another length."""
+    if seed is None:
+        return [None] * num_envs
+    if isinstance(seed, (int, np.integer)):
+        return [int(seed) + i for i in range(num_envs)]
+    seeds = list(seed)
+    if len(seeds) != num_envs:
+        raise ValueError(f"expected {num_envs} seeds, got {len(seeds)}")
+    return seeds
+
+
 class GpfdVectorEnv(VectorEnv):
     """N instances of the gpfd environment ``gpfd_env`` (see gpfd.envs.GpfdEnv)."""
 
@@ -90,14 +103,7 @@ class GpfdVectorEnv(VectorEnv):
         """seed: None, an int (instance i gets seed + i) or one seed (or None) per instance.
         options: ``{"reset_mask": bool array}`` resets only those instances."""
         super().reset(seed=seed if isinstance(seed, int) else None)
-        if seed is None:
-            seeds: list[int | None] = [None] * self.num_envs
-        elif isinstance(seed, (int, np.integer)):
-            seeds = [int(seed) + i for i in range(self.num_envs)]
-        else:
-            seeds = list(seed)
-            if len(seeds) != self.num_envs:
-                raise ValueError(f"expected {self.num_envs} seeds, got {len(seeds)}")
+        seeds = lane_seeds(seed, self.num_envs)
         mask = None
         if options and "reset_mask" in options:
             mask = np.ascontiguousarray(options["reset_mask"], dtype=bool)

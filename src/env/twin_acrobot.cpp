@@ -96,13 +96,7 @@ class AcrobotTwin final : public GymnasiumTwin {
     dynamics_.assign(4, 0.0);
   }
   Params params() const override { return AcrobotConfig::table().write(config_); }
-  ActionSpace actionSpace() const override {
-    ActionSpace space;
-    space.kind = ActionSpace::Kind::Discrete;
-    space.choices = {3};
-    space.names = {"action"};
-    return space;
-  }
+  ActionSpace actionSpace() const override { return discreteActions(3); }
   void setState(std::span<const double> state) override {
     if (state.size() != 4) {
       throw InputError("Acrobot-v1 is set by its 4 angles and velocities", "state");

@@ -41,13 +41,7 @@ class CartPoleTwin final : public GymnasiumTwin {
     dynamics_.assign(4, 0.0);
   }
   Params params() const override { return CartPoleConfig::table().write(config_); }
-  ActionSpace actionSpace() const override {
-    ActionSpace space;
-    space.kind = ActionSpace::Kind::Discrete;
-    space.choices = {2};
-    space.names = {"action"};
-    return space;
-  }
+  ActionSpace actionSpace() const override { return discreteActions(2); }
   void setState(std::span<const double> state) override {
     if (state.size() != 4) throw InputError("CartPole-v1 takes 4 state variables", "state");
     dynamics_.assign(state.begin(), state.end());

@@ -66,13 +66,7 @@ class MountainCarTwin final : public MountainCarBase {
     dynamics_.assign(2, 0.0);
   }
   Params params() const override { return DiscreteConfig::table().write(config_); }
-  ActionSpace actionSpace() const override {
-    ActionSpace space;
-    space.kind = ActionSpace::Kind::Discrete;
-    space.choices = {3};
-    space.names = {"action"};
-    return space;
-  }
+  ActionSpace actionSpace() const override { return discreteActions(3); }
 
  private:
   StepResult advance(std::span<const double> action, ActionKind) override {
@@ -107,13 +101,7 @@ class MountainCarContinuousTwin final : public MountainCarBase {
     dynamics_.assign(2, 0.0);
   }
   Params params() const override { return ContinuousConfig::table().write(config_); }
-  ActionSpace actionSpace() const override {
-    ActionSpace space;
-    space.low = {-1.0};
-    space.high = {1.0};
-    space.names = {"force"};
-    return space;
-  }
+  ActionSpace actionSpace() const override { return boxAction(-1.0, 1.0, "force"); }
 
  private:
   StepResult advance(std::span<const double> action, ActionKind kind) override {

@@ -98,6 +98,22 @@ inline Num power(const Num& x, const Num& y) {
 inline Num py(double value, Promotion promotion) { return {value, Kind::PyFloat, promotion}; }
 inline Num f64(double value, Promotion promotion) { return {value, Kind::Float64, promotion}; }
 
+// Gymnasium's Discrete(choices) and a one-dimensional Box [low, high] named `name`.
+inline ActionSpace discreteActions(int choices) {
+  ActionSpace space;
+  space.kind = ActionSpace::Kind::Discrete;
+  space.choices = {choices};
+  space.names = {"action"};
+  return space;
+}
+inline ActionSpace boxAction(double low, double high, const std::string& name) {
+  ActionSpace space;
+  space.low = {low};
+  space.high = {high};
+  space.names = {name};
+  return space;
+}
+
 // The registry entry of a twin of `id`, made from its parameter table.
 template <typename Twin, typename Config>
 EnvInfo twinInfo(const std::string& id, const std::string& description) {

@@ -63,13 +63,7 @@ class PendulumTwin final : public GymnasiumTwin {
     dynamics_.assign(2, 0.0);
   }
   Params params() const override { return PendulumConfig::table().write(config_); }
-  ActionSpace actionSpace() const override {
-    ActionSpace space;
-    space.low = {-kMaxTorque};
-    space.high = {kMaxTorque};
-    space.names = {"torque"};
-    return space;
-  }
+  ActionSpace actionSpace() const override { return boxAction(-kMaxTorque, kMaxTorque, "torque"); }
   // (cos th, sin th, dth), th from the first two by atan2.
   void setState(std::span<const double> state) override {
     if (state.size() != 3) throw InputError("Pendulum-v1 takes 3 state variables", "state");
