@@ -64,10 +64,11 @@ def test_ars_on_a_python_environment_is_the_same_on_one_and_two_workers(tmp_path
         gpfd.evolve(
             str(config),
             env="CartPole-v1",
+            native=False,  # Gymnasium's own, stepped in Python by the workers.
             set={"learner.params.max_episode_steps": 200},
             threads=workers,
             out=tmp_path / f"workers-{workers}",
             verbose=False,
         )
     assert outcome(tmp_path / "workers-1") == outcome(tmp_path / "workers-2")
-    assert "# env: CartPole-v1" in (tmp_path / "workers-1/best.features").read_text()
+    assert "# env: gymnasium:CartPole-v1" in (tmp_path / "workers-1/best.features").read_text()

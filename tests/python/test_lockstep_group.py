@@ -130,6 +130,7 @@ def test_fitness_of_each_takes_a_list():
 def test_a_vector_form_seeded_as_a_whole_gives_one_run_for_any_number_of_workers(tmp_path):
     common: dict[str, Any] = {
         "env": "CartPole-v1",
+        "native": False,  # Gymnasium's own, whose vector form is the subject.
         "seed": 2,
         "population": 20,
         "generations": 1,

@@ -32,6 +32,7 @@ def test_a_gymnasium_id_evolves_for_two_generations_in_worker_processes(tmp_path
     seen: list[dict[str, Any]] = []
     common: dict[str, Any] = {
         "env": "MountainCarContinuous-v0",
+        "native": False,  # Gymnasium's own, stepped in worker processes.
         "seed": 3,
         "population": 6,
         "generations": 2,
@@ -39,7 +40,8 @@ def test_a_gymnasium_id_evolves_for_two_generations_in_worker_processes(tmp_path
     run = gpfd.evolve(**common, set=TINY, threads=2, out=tmp_path / "two", callback=seen.append)
     assert run.finished and [s["generation"] for s in seen] == [0, 1]
     assert run.best is not None
-    assert run.best.env == "MountainCarContinuous-v0" and run.best.variables == ["x0", "x1"]
+    assert run.best.env == "gymnasium:MountainCarContinuous-v0"
+    assert run.best.variables == ["x0", "x1"]
     assert np.isfinite(run.history["best"]).all()
     # The same run on one process: the same result (each trial's resets are seeded).
     one = gpfd.evolve(**common, set=TINY, threads=1, out=tmp_path / "one")
@@ -75,15 +77,16 @@ def test_a_callable_runs_in_worker_processes(tmp_path):
 
 
 def test_a_discrete_action_space_works(tmp_path):
-    run = gpfd.evolve(env="CartPole-v1", **SHORT, threads=1, out=tmp_path / "run")
+    run = gpfd.evolve(env="CartPole-v1", native=False, **SHORT, threads=1, out=tmp_path / "run")
     assert run.best is not None and run.best.variables == ["x0", "x1", "x2", "x3"]
 
 
 def test_independent_runs_on_a_python_environment(tmp_path):
     # runs=2, as gpfd evolve --runs 2: run 1 is the single run, and runs.csv gives the verdict.
     small = {**SHORT, "set": TINY | {"validation.candidates": 2, "validation.seeds": 2}}
-    sets = gpfd.evolve(env="CartPole-v1", **small, runs=2, threads=1, out=tmp_path / "runs")
-    single = gpfd.evolve(env="CartPole-v1", **small, threads=1, out=tmp_path / "single")
+    gymnasiums: dict[str, Any] = {"env": "CartPole-v1", "native": False, **small}
+    sets = gpfd.evolve(**gymnasiums, runs=2, threads=1, out=tmp_path / "runs")
+    single = gpfd.evolve(**gymnasiums, threads=1, out=tmp_path / "single")
     assert (sets.dir / "runs.csv").is_file()
     assert single.best is not None
     first = gpfd.FeatureSet.load(str(tmp_path / "runs" / "run-01" / "best.features"))
@@ -93,9 +96,10 @@ def test_independent_runs_on_a_python_environment(tmp_path):
 
 def test_fitness_on_a_python_environment():
     fs = gpfd.FeatureSet.parse("x0 * x1\nx1\n", variables=["x0", "x1"])
-    value = gpfd.fitness(fs, env="MountainCarContinuous-v0", set=TINY, seed=2)
+    mcc: dict[str, Any] = {"env": "MountainCarContinuous-v0", "native": False}
+    value = gpfd.fitness(fs, **mcc, set=TINY, seed=2)
     assert np.isfinite(value)
-    assert gpfd.fitness(fs, env="MountainCarContinuous-v0", set=TINY, seed=2) == value
+    assert gpfd.fitness(fs, **mcc, set=TINY, seed=2) == value
 
 
 class NaNAfterThreeSteps(gym.Env):
