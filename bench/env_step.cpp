@@ -169,6 +169,9 @@ void BM_BatchCartPole(benchmark::State& s) { stepBatch(s, "cartpole", {}); }
 void BM_BatchAcrobot(benchmark::State& s) { stepBatch(s, "acrobot", {}); }
 void BM_BatchSwimmer3(benchmark::State& s) { stepBatch(s, "swimmer", {{"segments", "3"}}); }
 void BM_BatchSwimmer5(benchmark::State& s) { stepBatch(s, "swimmer", {{"segments", "5"}}); }
+// The twins of Gymnasium's classic control (env/gymnasium_twin.hpp), one instance.
+void BM_Twin(benchmark::State& s, const char* id) { stepEnvironment(s, id, {}); }
+
 void batchArgs(benchmark::internal::Benchmark* b) {
   for (const int lanes : {1, 4, 10, 64}) b->Args({lanes, 0})->Args({lanes, 1})->Args({lanes, 2});
 }
@@ -184,6 +187,11 @@ BENCHMARK(BM_SwimmerOneEulerStep)->Arg(3)->Arg(5);
 BENCHMARK(BM_SwimmerOneRk4Step)->Arg(3)->Arg(5);
 BENCHMARK(BM_TetrisStep);
 BENCHMARK(BM_TetrisDecision)->Args({12, 8})->Args({20, 10});
+BENCHMARK_CAPTURE(BM_Twin, CartPole, "CartPole-v1");
+BENCHMARK_CAPTURE(BM_Twin, Acrobot, "Acrobot-v1");
+BENCHMARK_CAPTURE(BM_Twin, Pendulum, "Pendulum-v1");
+BENCHMARK_CAPTURE(BM_Twin, MountainCar, "MountainCar-v0");
+BENCHMARK_CAPTURE(BM_Twin, MountainCarContinuous, "MountainCarContinuous-v0");
 BENCHMARK(BM_BatchCartPole)->Apply(batchArgs);
 BENCHMARK(BM_BatchAcrobot)->Apply(batchArgs);
 BENCHMARK(BM_BatchSwimmer3)->Apply(batchArgs);

@@ -25,6 +25,7 @@ void GymnasiumTwin::resetWithSeed(std::span<const std::uint32_t> seedWords) {
   random_.emplace(numpy::SeedSequence(seedWords));
   elapsed_ = 0;
   start(*random_);
+  roundObservation();
 }
 
 void GymnasiumTwin::resetWithoutSeed() {
@@ -37,6 +38,7 @@ void GymnasiumTwin::resetWithoutSeed() {
   }
   elapsed_ = 0;
   start(*random_);
+  roundObservation();
 }
 
 StepResult GymnasiumTwin::stepAs(std::span<const double> action, ActionKind kind) {
@@ -51,11 +53,16 @@ StepResult GymnasiumTwin::stepAs(std::span<const double> action, ActionKind kind
   } else {
     result = advance(action, kind);
   }
+  roundObservation();
   ++elapsed_;  // TimeLimit: truncated once the episode has run its steps.
   if (settings_.maxEpisodeSteps > 0 && elapsed_ >= settings_.maxEpisodeSteps) {
     result.truncated = true;
   }
   return result;
+}
+
+void GymnasiumTwin::roundObservation() {
+  for (double& value : observation_) value = numpy_scalar::toFloat32(value);
 }
 
 void GymnasiumTwin::checkActionSize(std::span<const double> action, std::size_t size) const {

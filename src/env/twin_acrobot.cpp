@@ -5,7 +5,9 @@
 #include <fmt/format.h>
 
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include "gpfd/util/error.hpp"
 #include "numpy_trig_f32.hpp"
@@ -37,12 +39,24 @@ constexpr std::array<double, 3> kTorques{-1.0, 0.0, 1.0};  // AVAIL_TORQUE
 
 using Vec = std::array<double, 5>;  // theta1, theta2, dtheta1, dtheta2, torque
 
-// _dsdt, term by term in its order; Python's ** on a float64 is libm's pow.
-Vec derivative(const Vec& s) {
+// cos and sin of an angle, as libm's cos and sin give them.
+struct CosSin {
+  double cos = 0.0, sin = 0.0;
+};
+CosSin cosSin(double angle) {
+  CosSin out;
+  libmSinCos(angle, out.sin, out.cos);
+  return out;
+}
+
+// lc1**2, lc2**2 and l1**2 of Python floats: libm's pow, the same every call.
+const double lc1Sq = libmPow(kLc1, 2), lc2Sq = libmPow(kLc2, 2), l1Sq = libmPow(kL1, 2);
+
+// _dsdt, term by term in its order, given cos and sin of theta2; Python's ** on a float64 is libm's
+// pow.
+Vec derivative(const Vec& s, CosSin trig2) {
   const double a = s[4], theta1 = s[0], theta2 = s[1], dtheta1 = s[2], dtheta2 = s[3];
-  // lc1**2, lc2**2 and l1**2 of Python floats: libm's pow, the same every call.
-  static const double lc1Sq = libmPow(kLc1, 2), lc2Sq = libmPow(kLc2, 2), l1Sq = libmPow(kL1, 2);
-  const double cos2 = std::cos(theta2), sin2 = std::sin(theta2);
+  const double cos2 = trig2.cos, sin2 = trig2.sin;
   const double d1 = kM1 * lc1Sq + kM2 * (l1Sq + lc2Sq + 2 * kL1 * kLc2 * cos2) + kI1 + kI2;
   const double d2 = kM2 * (lc2Sq + kL1 * kLc2 * cos2) + kI2;
   const double phi2 = kM2 * kLc2 * kG * std::cos(theta1 + theta2 - kPi / 2.0);
@@ -63,10 +77,12 @@ Vec plus(const Vec& y, double h, const Vec& k) {
   return out;
 }
 
-// rk4(derivs, y0, [0, dt]): one classic Runge-Kutta step.
-Vec rk4(const Vec& y0) {
+Vec derivative(const Vec& s) { return derivative(s, cosSin(s[1])); }
+
+// rk4(derivs, y0, [0, dt]): one classic Runge-Kutta step; `trig2` is cos and sin of y0's theta2.
+Vec rk4(const Vec& y0, CosSin trig2) {
   const double dt = kDt - 0, dt2 = dt / 2.0;
-  const Vec k1 = derivative(y0);
+  const Vec k1 = derivative(y0, trig2);
   const Vec k2 = derivative(plus(y0, dt2, k1));
   const Vec k3 = derivative(plus(y0, dt2, k2));
   const Vec k4 = derivative(plus(y0, dt, k3));
@@ -103,6 +119,7 @@ class AcrobotTwin final : public GymnasiumTwin {
     }
     dynamics_.assign(state.begin(), state.end());
     observe(false);
+    roundObservation();
   }
 
  private:
@@ -120,12 +137,12 @@ class AcrobotTwin final : public GymnasiumTwin {
     }
     const Vec augmented{dynamics_[0], dynamics_[1], dynamics_[2], dynamics_[3],
                         kTorques[static_cast<std::size_t>(a)]};
-    const Vec next = rk4(augmented);
+    const Vec next = rk4(augmented, cosSinOfState(1));
     dynamics_ = {wrap(next[0], -kPi, kPi), wrap(next[1], -kPi, kPi),
                  bound(next[2], -kMaxVel1, kMaxVel1), bound(next[3], -kMaxVel2, kMaxVel2)};
     observe(false);
     StepResult result;
-    result.terminated = -std::cos(dynamics_[0]) - std::cos(dynamics_[1] + dynamics_[0]) > 1.0;
+    result.terminated = -cosSinOfState(0).cos - std::cos(dynamics_[1] + dynamics_[0]) > 1.0;
     result.reward = result.terminated ? 0.0 : -1.0;
     return result;
   }
@@ -133,18 +150,36 @@ class AcrobotTwin final : public GymnasiumTwin {
   // _get_ob: cos and sin of the angles, then the velocities, as float32. After the reset the state
   // is a float32 array, whose cos and sin NumPy computes in float32 (numpy_trig_f32.hpp).
   void observe(bool float32State) {
-    const auto trig = [float32State](double angle, bool cosine) -> double {
+    for (std::size_t i = 0; i < 2; ++i) {
       if (float32State) {
-        return numpy_trig::sinOrCos(static_cast<float>(angle), cosine);
+        const auto angle = static_cast<float>(dynamics_[i]);
+        observation_[2 * i] = numpy_trig::sinOrCos(angle, true);
+        observation_[2 * i + 1] = numpy_trig::sinOrCos(angle, false);
+      } else {
+        const CosSin trig = cosSinOfState(i);
+        observation_[2 * i] = static_cast<float>(trig.cos);
+        observation_[2 * i + 1] = static_cast<float>(trig.sin);
       }
-      return static_cast<float>(cosine ? std::cos(angle) : std::sin(angle));
-    };
-    observation_ = {trig(dynamics_[0], true),         trig(dynamics_[0], false),
-                    trig(dynamics_[1], true),         trig(dynamics_[1], false),
-                    static_cast<float>(dynamics_[2]), static_cast<float>(dynamics_[3])};
+      observation_[4 + i] = static_cast<float>(dynamics_[2 + i]);
+    }
+  }
+
+  // np.cos and np.sin of the state's angle i in float64, computed once per value: the observation,
+  // the terminal test and the next step's first derivative all take them of the same double.
+  CosSin cosSinOfState(std::size_t i) {
+    const auto bits = std::bit_cast<std::uint64_t>(dynamics_[i]);
+    if (!trigKnown_[i] || trigOf_[i] != bits) {
+      trig_[i] = cosSin(dynamics_[i]);
+      trigOf_[i] = bits;
+      trigKnown_[i] = true;
+    }
+    return trig_[i];
   }
 
   AcrobotConfig config_;
+  std::array<CosSin, 2> trig_{};  // cos and sin of the angles whose bits are trigOf_.
+  std::array<std::uint64_t, 2> trigOf_{};
+  std::array<bool, 2> trigKnown_{};
 };
 
 }  // namespace

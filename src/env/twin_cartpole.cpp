@@ -47,6 +47,7 @@ class CartPoleTwin final : public GymnasiumTwin {
     dynamics_.assign(state.begin(), state.end());
     extra_ = 0;
     observe();
+    roundObservation();
   }
 
  private:

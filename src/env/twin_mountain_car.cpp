@@ -48,6 +48,7 @@ class MountainCarBase : public GymnasiumTwin {
     dynamics_.assign(state.begin(), state.end());
     extra_ = 1;  // Set as a float64 state, as after a reset.
     observe();
+    roundObservation();
   }
   void start(numpy::Pcg64& random) override {
     dynamics_ = {random.uniform(-0.6, -0.4), 0.0};

@@ -42,24 +42,56 @@ inline double libmPow(double x, double y) {
   return pow(x, y);
 }
 
-// The unit in the last place of a normal positive value with `mantissaBits` stored bits (52 for
-// a double, 23 for a float): 2^(its exponent - mantissaBits), from the exponent's bits.
-inline double ulpOf(double magnitude, int mantissaBits) {
+// sin(x) and cos(x) as libm's sin and cos give them (glibc's sincos shares their code).
+inline void libmSinCos(double x, double& sine, double& cosine) {
+#ifdef __GLIBC__
+  ::sincos(x, &sine, &cosine);
+#else
+  sine = std::sin(x);
+  cosine = std::cos(x);
+#endif
+}
+
+// The spacing of doubles (`mantissaBits` 52) or floats (23) above a normal positive value:
+// 2^(its exponent - mantissaBits). Below a power of two the spacing is half that: the squares
+// below fall back on libm where fl(x * x) is a power of two and not exact.
+inline double spacingAt(double magnitude, int mantissaBits) {
   const auto exponent = std::bit_cast<std::uint64_t>(magnitude) & 0x7ff0000000000000ULL;
   return std::bit_cast<double>(exponent - (static_cast<std::uint64_t>(mantissaBits) << 52));
 }
+inline bool isPowerOfTwo(double magnitude) {
+  return (std::bit_cast<std::uint64_t>(magnitude) & 0x000fffffffffffffULL) == 0;
+}
 
-// pow(x, 2.0) as libm gives it, without calling libm where that cannot matter: glibc's pow errs
-// by at most 0.54 ulp (the bound stated in its e_pow.c), so where the exact square lies within
-// 0.45 ulp of the rounded product x * x (the product's error is exact by FMA), no other double is
-// near enough and pow returns x * x. Near a rounding boundary, and for tiny, huge or non-finite
-// squares, libm is asked.
+// |log2 v| bounded from v's binary exponent e: at most |e| + 1.
+inline double log2Bound(double magnitude) {
+  const auto exponent = static_cast<int>((std::bit_cast<std::uint64_t>(magnitude) >> 52) & 0x7ff);
+  return std::abs(exponent - 1023) + 1.0;
+}
+
+// x * x - fl(x * x), exact (Dekker's product by Veltkamp's split), for |x| in (2^-450, 2^500).
+inline double squareError(double x, double product) {
+  const double split = 134217729.0 * x;  // 2^27 + 1
+  const double high = split - (split - x), low = x - high;
+  return ((high * high - product) + 2.0 * high * low) + low * low;
+}
+
+// pow(x, 2.0) as libm gives it, without calling libm where that cannot matter. glibc's pow is
+// exp(y log x) (its e_pow.c states the parts: log's relative error 1.5 * 2^-68 without FMA, exp's
+// 0.511 ulp, so at most 0.011 ulp before its final rounding): it errs from the exact square by at
+// most 0.011 + |ln x^2| * 1.5 * 2^-68 * 2^53 ulp before rounding, so where the exact square lies
+// farther than that from the midpoint between fl(x * x) and its neighbour, pow rounds it to
+// fl(x * x) too. Near a midpoint, and for tiny, huge or non-finite squares, libm is asked.
 inline double libmSquare(double x) {
   const double product = x * x;
   const double magnitude = std::fabs(product);
   if (!(magnitude > 0x1p-900 && magnitude < 0x1p1000)) return libmPow(x, 2.0);
-  const double error = std::fma(x, x, -product);
-  return std::fabs(error) < 0.45 * ulpOf(magnitude, 52) ? product : libmPow(x, 2.0);
+  const double beforeRounding = 0.0111 + log2Bound(magnitude) * 0.6932 * 1.5 * 0x1p-15;
+  const double margin = 0.5 - beforeRounding - 0.001;
+  const double error = std::fabs(squareError(x, product));
+  const bool clear =
+      error < margin * spacingAt(magnitude, 52) && (error == 0.0 || !isPowerOfTwo(magnitude));
+  return clear ? product : libmPow(x, 2.0);
 }
 
 // x ** y on a float32 scalar (NumPy's npy_powf): libm's powf, likewise.
@@ -68,17 +100,21 @@ inline float libmPowf(float x, float y) {
   return powf(x, y);
 }
 
-// powf(x, 2.0f) likewise: x * x is exact in double; glibc's powf errs by at most 0.82 ulp (its
-// e_powf.c), so where the exact square lies within 0.15 ulp of its float rounding, powf returns
-// that rounding.
+// powf(x, 2.0f) likewise: x * x is exact in double. glibc's powf computes exp2(y log2 x) in double
+// and rounds that to float once; its e_powf.c states the double's relative error as
+// |y log2 x| * ln 2 * 1.83 * 2^-33 + 1.69 * 2^-34, so where the exact square lies farther than
+// that from the midpoint between its float rounding and a neighbour, powf returns that rounding.
 inline float libmSquaref(float x) {
   const double exact = static_cast<double>(x) * x;
   const float rounded = static_cast<float>(exact);
-  const float magnitude = std::fabs(rounded);
-  if (!(magnitude > 0x1p-100f && magnitude < 0x1p100f)) return libmPowf(x, 2.0f);
-  return std::fabs(exact - static_cast<double>(rounded)) < 0.15 * ulpOf(magnitude, 23)
-             ? rounded
-             : libmPowf(x, 2.0f);
+  const double magnitude = std::fabs(static_cast<double>(rounded));
+  if (!(magnitude > 0x1p-100 && magnitude < 0x1p100)) return libmPowf(x, 2.0f);
+  const double relative = log2Bound(magnitude) * 0.6932 * 1.83 * 0x1p-33 + 1.69 * 0x1p-34;
+  const double margin = 0.5 - relative * 0x1p24 - 0.001;
+  const double error = std::fabs(exact - static_cast<double>(rounded));
+  const bool clear =
+      error < margin * spacingAt(magnitude, 23) && (error == 0.0 || !isPowerOfTwo(magnitude));
+  return clear ? rounded : libmPowf(x, 2.0f);
 }
 
 // `x ** y` on values of NumPy's types: the promoted type's pow.

@@ -69,6 +69,7 @@ class PendulumTwin final : public GymnasiumTwin {
     if (state.size() != 3) throw InputError("Pendulum-v1 takes 3 state variables", "state");
     dynamics_ = {std::atan2(state[1], state[0]), state[2]};
     observe();
+    roundObservation();
   }
 
  private:
@@ -89,8 +90,9 @@ class PendulumTwin final : public GymnasiumTwin {
     const Num costs =
         power(normalised, two) + py(0.1, p) * power(thdot, two) + py(0.001, p) * power(u, two);
     const double g = config_.g;
+    static const double lengthSquared = libmPow(kLength, 2);  // l**2 of Python floats.
     const Num accel = py(3 * g / (2 * kLength), p) * f64(sine(th.value), p) +
-                      py(3.0 / (kMass * libmPow(kLength, 2)), p) * u;
+                      py(3.0 / (kMass * lengthSquared), p) * u;
     Num newThdot = thdot + accel * py(kDt, p);
     newThdot =
         numpy_scalar::npClip(newThdot, {-kMaxSpeed, Kind::PyInt, p}, {kMaxSpeed, Kind::PyInt, p});
@@ -103,10 +105,12 @@ class PendulumTwin final : public GymnasiumTwin {
   }
 
   void observe() {
+    double cosine = 0.0;
     sineOf_ = dynamics_[0];
-    sine_ = std::sin(dynamics_[0]);
-    observation_ = {static_cast<float>(std::cos(dynamics_[0])), static_cast<float>(sine_),
-                    static_cast<float>(dynamics_[1])};
+    libmSinCos(dynamics_[0], sine_, cosine);
+    observation_[0] = static_cast<float>(cosine);
+    observation_[1] = static_cast<float>(sine_);
+    observation_[2] = static_cast<float>(dynamics_[1]);
   }
 
   // np.sin(th): the observation's sine of the same angle where it is the same (bit for bit).

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,30 @@ TEST(Twins, LibmSquaresAreLibmsPow) {
   EXPECT_EQ(twin::libmSquare(1e300), twin::libmPow(1e300, 2.0));
 }
 
+// Where the fast paths' error bounds are thin: squares whose exact value lies within 0.05 of a
+// spacing from the midpoint between fl(x * x) and its neighbour (about one square in ten).
+TEST(Twins, LibmSquaresNearAMidpointAreLibmsPow) {
+  Rng rng(7);
+  int doubles = 0, floats = 0;
+  for (int i = 0; i < 2000000 && (doubles < 40000 || floats < 40000); ++i) {
+    const double x = (rng.uniform() - 0.5) * std::ldexp(1.0, static_cast<int>(rng.below(80)) - 40);
+    const double product = x * x;
+    if (std::fabs(twin::squareError(x, product)) > 0.45 * twin::spacingAt(product, 52)) {
+      ASSERT_EQ(twin::libmSquare(x), twin::libmPow(x, 2.0)) << x;
+      ++doubles;
+    }
+    const auto f = static_cast<float>(x);
+    const double exact = static_cast<double>(f) * f;
+    const double rounded = static_cast<float>(exact);
+    if (std::fabs(exact - rounded) > 0.45 * twin::spacingAt(rounded, 23)) {
+      ASSERT_EQ(twin::libmSquaref(f), twin::libmPowf(f, 2.0f)) << f;
+      ++floats;
+    }
+  }
+  EXPECT_GE(doubles, 40000);
+  EXPECT_GE(floats, 40000);
+}
+
 TEST(Twins, ASeedGivesGymnasiumsStartAndTheTimeLimitTruncates) {
   auto cartpole = makeTwin("CartPole-v1");
   cartpole->resetWithSeed(numpy::SeedSequence::wordsOf(0));
@@ -97,6 +122,38 @@ TEST(Twins, ASnapshotContinuesBitForBit) {
     }
     const char* other = std::string(id) == "CartPole-v1" ? "Acrobot-v1" : "CartPole-v1";
     EXPECT_THROW(b->restore(makeTwin(other)->snapshot()), InputError) << id;
+  }
+}
+
+// gpfd's learners read state() as it is, where Gymnasium's users get a float32 array: every value
+// must be a float32 already (Acrobot-v1's and Pendulum-v1's were not, until the base rounded them).
+TEST(Twins, TheStateGpfdReadsIsGymnasiumsFloat32Observation) {
+  const auto isFloat32 = [](std::span<const double> state) {
+    for (const double v : state) {
+      if (static_cast<double>(static_cast<float>(v)) != v) return false;
+    }
+    return true;
+  };
+  for (const char* id :
+       {"CartPole-v1", "Acrobot-v1", "Pendulum-v1", "MountainCar-v0", "MountainCarContinuous-v0"}) {
+    auto twin = makeTwin(id);
+    Rng rng(11);
+    twin->reset(rng);
+    ASSERT_TRUE(isFloat32(twin->state())) << id << " after a reset";
+    std::vector<double> action(1, 0.0);
+    for (int i = 0; i < 300; ++i) {
+      twin->sampleAction(rng, action);
+      const StepResult result = twin->step(action);
+      ASSERT_TRUE(isFloat32(twin->state())) << id << " after step " << i;
+      if (result.terminated || result.truncated) twin->reset(rng);
+    }
+    // Acrobot-v1 is set by its angles and velocities, the others by an observation.
+    const std::vector<double> state =
+        std::string(id) == "Acrobot-v1"
+            ? std::vector<double>{0.1, -0.2, 0.3, 0.4}
+            : std::vector<double>(twin->state().begin(), twin->state().end());
+    twin->setState(state);
+    EXPECT_TRUE(isFloat32(twin->state())) << id << " after setState";
   }
 }
 
