@@ -399,8 +399,8 @@ def evolve(
         processes (see gpfd.user_env); ``env_kwargs`` go to ``gymnasium.make`` or the callable.
     native: a Gymnasium id with a twin in gpfd (CartPole-v1, Acrobot-v1, Pendulum-v1,
         MountainCar-v0, MountainCarContinuous-v0: gpfd.twins) is stepped by the twin in C++,
-        the same episodes bit for bit as Gymnasium's (a whole run may still differ from the one
-        stepped in Python in the last bits of the learner's updates), unless ``native=False``,
+        the same episodes bit for bit as Gymnasium's, so the same files as the run stepped in
+        Python but for the environment's name and the timings, unless ``native=False``,
         an ``executor`` is given or ``env_kwargs`` holds a keyword the twin does not take: then
         Gymnasium's own, stepped in Python. One line on stderr says which (none with
         ``verbose=False``). A ``gym.make(...)`` object or a callable is never swapped.

@@ -133,7 +133,10 @@ def test_a_vector_form_in_lockstep_groups_on_dask_gives_threads_one(tmp_path, da
 
 def test_assess_on_an_executor_gives_the_same_table():
     fs = gpfd.FeatureSet.parse("x0 * x1\nx1\n", variables=["x0", "x1"])
+    # The learner pinned: choosing it on the task trains ~100 runs on each side, and is tested on
+    # workers by test_user_env_workers.py.
     common: dict[str, Any] = {"env": Point, "runs": 3, "budget": 2, "as_frame": False}
+    common["params"] = {"step": "rprop", "rprop": "large"}
     one = gpfd.assess(fs, **common, threads=1)
     with process_pool(2) as executor:
         two = gpfd.assess(fs, **common, executor=executor)
