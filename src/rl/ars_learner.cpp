@@ -1,4 +1,5 @@
 // The registry entry of Augmented Random Search: its parameters and how it trains.
+#include "config_learner.hpp"
 #include "gpfd/rl/ars.hpp"
 #include "gpfd/rl/policy_gradient.hpp"
 
@@ -51,43 +52,21 @@ const ParamTable<ArsConfig>& arsParams() {
 
 namespace {
 
-class ArsLearner final : public Learner {
+class ArsLearner final : public ConfigLearner<ArsConfig, trainArs, trainArsRuns> {
  public:
-  explicit ArsLearner(ArsConfig config) : config_(std::move(config)) {}
-
-  LearningCurve train(env::Environment& env, const features::FeatureMap& map, Rng& rng,
-                      const PointCallback& onPoint) const override {
-    ArsConfig config = config_;
-    config.onPoint = onPoint;
-    return trainArs(env, map, config, rng);
-  }
-
-  // With lockstep, every run's episodes of an iteration share the lanes (trainArsRuns); without,
-  // one run after another, each on its own environment (the reference). The same curves.
-  std::vector<LearningCurve> trainRuns(const EnvironmentMaker& makeEnv,
-                                       const features::FeatureMap& map, std::span<Rng> rngs,
-                                       const RunPointCallback& onPoint) const override {
-    if (!config_.lockstep) return Learner::trainRuns(makeEnv, map, rngs, onPoint);
-    const auto env = makeEnv();
-    ArsConfig config = config_;
-    config.onRunPoint = onPoint;
-    return trainArsRuns(*env, map, config, rngs);
-  }
+  using ConfigLearner::ConfigLearner;
 
   // The trained weights played as ARS plays them (policy gradient's greedy player: the arg-max,
   // or the mean action, which the environment clips).
   Evaluation evaluate(env::Environment& env, const features::FeatureMap& map,
                       const LinearWeights& weights, int episodes, Rng& rng) const override {
     PolicyGradientConfig player;
-    player.maxEpisodeSteps = config_.maxEpisodeSteps;
-    player.features = config_.features;
-    player.lockstep = config_.lockstep;
+    player.maxEpisodeSteps = config().maxEpisodeSteps;
+    player.features = config().features;
+    player.lockstep = config().lockstep;
     const auto e = evaluatePolicy(env, map, weights, player, episodes, true, rng);
     return {e.episodes, e.meanReturn, e.steps, e.diverged};
   }
-
- private:
-  ArsConfig config_;
 };
 
 }  // namespace

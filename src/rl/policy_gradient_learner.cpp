@@ -1,4 +1,5 @@
 // The registry entry of policy gradient with Rprop: its parameters and how it trains.
+#include "config_learner.hpp"
 #include "gpfd/rl/policy_gradient.hpp"
 
 namespace gpfd::rl {
@@ -92,40 +93,20 @@ const ParamTable<PolicyGradientConfig>& policyGradientParams() {
 
 namespace {
 
-class PolicyGradientLearner final : public Learner {
+// With lockstep, the runs' episodes of each update are played side by side
+// (trainPolicyGradientRuns) through the environment's batched form, or lane by lane through copies
+// of it (Environment::freshCopy) where it has none, or one after another on this one environment
+// where it cannot be copied. Every way gives the same curves.
+class PolicyGradientLearner final
+    : public ConfigLearner<PolicyGradientConfig, trainPolicyGradient, trainPolicyGradientRuns> {
  public:
-  explicit PolicyGradientLearner(PolicyGradientConfig config) : config_(std::move(config)) {}
-
-  LearningCurve train(env::Environment& env, const features::FeatureMap& map, Rng& rng,
-                      const PointCallback& onPoint) const override {
-    PolicyGradientConfig config = config_;
-    config.onPoint = onPoint;
-    return trainPolicyGradient(env, map, config, rng);
-  }
-
-  // With lockstep, the runs' episodes of each update are played side by side
-  // (trainPolicyGradientRuns) through the environment's batched form, or lane by lane through
-  // copies of it (Environment::freshCopy) where it has none, or one after another on this one
-  // environment where it cannot be copied; without lockstep, one run after another, each on its
-  // own environment (the reference). Every way gives the same curves.
-  std::vector<LearningCurve> trainRuns(const EnvironmentMaker& makeEnv,
-                                       const features::FeatureMap& map, std::span<Rng> rngs,
-                                       const RunPointCallback& onPoint) const override {
-    if (!config_.lockstep) return Learner::trainRuns(makeEnv, map, rngs, onPoint);
-    const auto env = makeEnv();
-    PolicyGradientConfig config = config_;
-    config.onRunPoint = onPoint;
-    return trainPolicyGradientRuns(*env, map, config, rngs);
-  }
+  using ConfigLearner::ConfigLearner;
 
   Evaluation evaluate(env::Environment& env, const features::FeatureMap& map,
                       const LinearWeights& weights, int episodes, Rng& rng) const override {
-    const auto e = evaluatePolicy(env, map, weights, config_, episodes, true, rng);
+    const auto e = evaluatePolicy(env, map, weights, config(), episodes, true, rng);
     return {e.episodes, e.meanReturn, e.steps, e.diverged};
   }
-
- private:
-  PolicyGradientConfig config_;
 };
 
 }  // namespace
