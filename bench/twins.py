@@ -10,17 +10,22 @@
 2. one fitness evaluation of a group of 16 feature sets (``gpfd.fitness_of_each``, user-env's
    trial, its learner's updates cut to --updates on both sides) on the twin and with
    ``native=False``, wall seconds;
-3. a whole ``gpfd.evolve("cartpole-quick", ...)`` run on gpfd's own cart-pole, on
-   ``env="CartPole-v1"`` (the twin) and with ``native=False``, wall seconds.
+3. a whole ``gpfd.evolve("cartpole-quick", ...)`` run on gpfd's own cart-pole (as configured,
+   and set to CartPole-v1's task: discrete actions, 500 steps), on ``env="CartPole-v1"`` (the
+   twin) and with ``native=False``, wall seconds, and the GP generations' work (their evaluations
+   times the mean return, proportional to the steps played) and seconds per unit of it: runs
+   that learn differently play different numbers of steps.
 
 The peers alternate within each repetition; each figure is the median over the repetitions.
 
 Usage, with the package installed (scripts/test installs it in .venv):
   .venv/bin/python bench/twins.py [--repeats 3] [--steps 20000] [--updates 3] [--sections 1,2,3]
+      [--no-python-run]
 """
 
 import argparse
 import contextlib
+import csv
 import io
 import os
 import statistics
@@ -163,14 +168,30 @@ def fitness_table(repeats, updates):
         print(f"| {task} | {twin:.3f} | {python:.2f} | {python / twin:,.0f}x |")
 
 
-def run_table(repeats, threads):
+def gp_work(out):
+    """The GP generations' seconds and work: the evaluations (and re-evaluations) times the mean
+    fitness, which on a cart-pole task (1 per step, measure "mean") is proportional to the steps
+    the trials played."""
+    with open(os.path.join(out, "generations.csv")) as f:
+        rows = list(csv.DictReader(f))
+    work = sum((int(r["evaluations"]) + int(r["reevaluations"])) * float(r["mean"]) for r in rows)
+    return sum(float(r["seconds"]) for r in rows), work
+
+
+def run_table(repeats, threads, python_run):
     print(f"\n3. a whole gpfd.evolve('cartpole-quick', seed=1, threads={threads}), wall seconds")
     cases = {
         "gpfd's own cart-pole": {},
+        "gpfd's own cart-pole as CartPole-v1's task": {
+            "set": {"env.params.actions": "discrete", "env.params.max_steps": 500}
+        },
         "CartPole-v1, the twin": {"env": "CartPole-v1"},
         "CartPole-v1, native=False": {"env": "CartPole-v1", "native": False},
     }
+    if not python_run:
+        del cases["CartPole-v1, native=False"]
     times = {name: [] for name in cases}
+    work = {}
     with tempfile.TemporaryDirectory() as tmp:
         for r in range(repeats):
             for name, kwargs in cases.items():
@@ -181,12 +202,20 @@ def run_table(repeats, threads):
                         "cartpole-quick", seed=1, threads=threads, out=out, verbose=False, **kwargs
                     )
                 times[name].append(time.perf_counter() - start)
+                work[name] = gp_work(out)
     base = statistics.median(times["gpfd's own cart-pole"])
-    print("| run | seconds | against gpfd's own cart-pole |")
-    print("|---|---|---|")
+    print(
+        "| run | seconds | against gpfd's own cart-pole | GP work (evaluations x mean return) "
+        "| GP us per unit of work |"
+    )
+    print("|---|---|---|---|---|")
     for name in cases:
         seconds = statistics.median(times[name])
-        print(f"| {name} | {seconds:.1f} | {seconds / base:.2f}x |")
+        gp_seconds, units = work[name]
+        print(
+            f"| {name} | {seconds:.1f} | {seconds / base:.2f}x | {units:,.0f} "
+            f"| {gp_seconds / units * 1e6:.1f} |"
+        )
 
 
 def main():
@@ -196,6 +225,11 @@ def main():
     parser.add_argument("--updates", type=int, default=3)
     parser.add_argument("--threads", type=int, default=2)
     parser.add_argument("--sections", default="1,2,3", help="which of the three to measure")
+    parser.add_argument(
+        "--no-python-run",
+        action="store_true",
+        help="section 3 without the run stepped in Python (about 13 minutes)",
+    )
     args = parser.parse_args()
     print(
         f"gpfd {gpfd.__version__}, Gymnasium {gym.__version__}, NumPy {np.__version__}, "
@@ -208,7 +242,7 @@ def main():
     if 2 in sections:
         fitness_table(args.repeats, args.updates)
     if 3 in sections:
-        run_table(args.repeats, args.threads)
+        run_table(args.repeats, args.threads, not args.no_python_run)
 
 
 if __name__ == "__main__":
