@@ -138,7 +138,9 @@ def reproduce_run_rows(top):
             runs = [evolve]
         for run in runs:
             features = (run / "best.features").read_text()
-            info = json.loads((run / "run.json").read_text()) if (run / "run.json").is_file() else {}
+            info = (
+                json.loads((run / "run.json").read_text()) if (run / "run.json").is_file() else {}
+            )
             rows.append(
                 {
                     "figure": evolve.parent.name,
