@@ -5,7 +5,9 @@ GP run of every task, gpfd's runs.csv columns with the task in front and what th
 (the returned and validation-winner expressions, the planted check, the sizes). A `gpfd
 reproduce` output keeps DIR/runs.csv (one row per GP run: seed, revision, returned expressions,
 verdict, GP and validation costs) and DIR/assessments.csv (every assessment's summary.csv rows),
-beside its own fig*/method-*.csv."""
+beside its own fig*/method-*.csv. A set of runs (`gpfd evolve --runs N`: runs.csv beside run-NN/)
+keeps gpfd's runs.csv and sets.csv: per run, its revision, the returned set's header (its scores
+and verdict) and expressions, and the validation winner's."""
 
 import csv
 import json
@@ -167,3 +169,32 @@ def assessment_rows(top):
         figure, name = summary.parent.parent.name, summary.parent.name.removeprefix("assess-")
         rows += [{"figure": figure, "assessment": name, **r} for r in read_csv(summary)]
     return rows
+
+
+def run_set_rows(top):
+    """One row per run of a `gpfd evolve --runs N` output (runs.csv beside run-NN/): what
+    runs.csv does not hold of each run's files."""
+    rows = []
+    for r in read_csv(Path(top) / "runs.csv"):
+        run = Path(top) / f"run-{int(r['run']):02d}"
+        features = (run / "best.features").read_text()
+        info = json.loads((run / "run.json").read_text()) if (run / "run.json").is_file() else {}
+        rows.append(
+            {
+                "run": r["run"],
+                "seed": r["seed"],
+                "revision": info.get("revision", ""),
+                **headers(features),
+                "expressions": expressions(features),
+                "winner_expressions": winner_expressions(run),
+            }
+        )
+    return rows
+
+
+def headers(features_text):
+    """Every '# key: value' line of a best.features text but the format's own (env, variables,
+    format, seed): its scores, verdict and how they were measured, whatever gpfd version wrote
+    it."""
+    found = re.findall(r"^# ([a-z_]+): (.*)$", features_text, re.M)
+    return {k: v for k, v in found if k not in ("env", "variables", "format", "seed")}

@@ -19,6 +19,9 @@ SUITE_LABELS = sorted(
     p.parent for p in RESULTS.rglob("summary.csv") if (p.parent / "runs.csv").exists()
 )
 REPRODUCE = sorted({p.parent.parent for p in RESULTS.rglob("method-*.csv")})
+RUN_SETS = sorted(
+    p.parent for p in RESULTS.rglob("sets.csv") if (p.parent / "verdict.txt").exists()
+)
 
 
 def read(path):
@@ -142,6 +145,21 @@ def test_a_reproduce_output_keeps_a_row_per_run(top):
         assert all(r["expressions"] for r in mine)
 
 
+@pytest.mark.parametrize("top", RUN_SETS, ids=lambda p: p.relative_to(RESULTS).as_posix())
+def test_a_run_set_verdict_is_its_rows(top):
+    # user-envs: `gpfd evolve --runs 8`'s runs.csv, the sets it returned, and its verdict line.
+    runs, sets = read(top / "runs.csv"), read(top / "sets.csv")
+    assert [(r["run"], r["seed"]) for r in sets] == [(r["run"], r["seed"]) for r in runs]
+    assert all(r["expressions"] for r in sets)
+    verdict = next(
+        line for line in (top / "verdict.txt").read_text().splitlines() if " runs: " in line
+    )
+    beat = [r for r in runs if r["returned"] == "discovered" and float(r["difference"]) > 0]
+    significant = [r for r in beat if float(r["p_vs_original"]) < 0.05]
+    assert verdict.startswith(f"{len(runs)} runs: ")
+    assert f"on confirmation in {len(beat)} ({len(significant)} with p < 0.05)" in verdict
+
+
 # docs/results/README.md's two tables: each row's benchmark, its reproduce output and method file.
 README_ROWS = {
     "cart-pole (50 PG updates)": ("robust-quick/new", "cartpole-quick"),
@@ -224,7 +242,7 @@ def test_a_suite_summary_regenerates_from_its_rows(tmp_path):
 
 def test_no_results_directory_keeps_run_directories():
     runs = [p for p in RESULTS.rglob("run-[0-9]*") if p.is_dir()]
-    assert runs == [p for p in runs if "user-envs" in p.parts]
+    assert runs == []
     assert not list(RESULTS.rglob("checkpoint.json"))
 
 
