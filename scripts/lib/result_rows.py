@@ -12,7 +12,9 @@ and verdict) and expressions, and the validation winner's."""
 import csv
 import json
 import re
+import shutil
 import sys
+import tarfile
 from pathlib import Path
 
 if sys.version_info >= (3, 11):
@@ -198,3 +200,28 @@ def headers(features_text):
     it."""
     found = re.findall(r"^# ([a-z_]+): (.*)$", features_text, re.M)
     return {k: v for k, v in found if k not in ("env", "variables", "format", "seed")}
+
+
+# What docs/results keeps of a reproduce output (beside runs.csv and assessments.csv), and what
+# goes into its plots.tar.xz.
+KEPT = ("report.md", "runs.csv", "assessments.csv", "fig*/method-*.csv", "fig3/jit/jit.csv")
+KEPT += ("fig3/jit/jit_unary.csv", "fig3/jit/jit_summary.txt")
+PLOTS = ("fig*/*.dat", "fig*/*.gp", "fig*/*/*.dat", "fig*/*/*.gp")
+
+
+def keep_reproduce_output(top, dest):
+    """Copies what docs/results keeps of the reproduce output top (its rows written first) into
+    dest, with the plots' data and gnuplot scripts as dest/plots.tar.xz (scripts/results-plots
+    draws them)."""
+    top, dest = Path(top), Path(dest)
+    for pattern in KEPT:
+        for path in sorted(top.glob(pattern)):
+            (dest / path.relative_to(top)).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copyfile(path, dest / path.relative_to(top))
+    plots = sorted({p for pattern in PLOTS for p in top.glob(pattern)})
+    with tarfile.open(dest / "plots.tar.xz", "w:xz", preset=9) as archive:
+        for path in plots:
+            info = archive.gettarinfo(path, arcname=path.relative_to(top).as_posix())
+            info.mtime, info.uid, info.gid, info.uname, info.gname = 0, 0, 0, "", ""
+            with open(path, "rb") as f:
+                archive.addfile(info, f)
