@@ -116,7 +116,7 @@ def calls_rate(function, x, calls, n):
 
 
 def feature_sets(scale):
-    path = REPO / "docs/results/paper/fig6/evolve-swimmer5/best.features"
+    path = REPO / "tests/data/results/features/paper-fig6-swimmer5.features"
     fs = gpfd.FeatureSet.load(str(path))
     namespace = {}
     exec(fs.export("python"), namespace)

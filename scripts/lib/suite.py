@@ -1,19 +1,18 @@
 """What the result suites (scripts/planted-suite, scripts/gymnasium-suite) share: one task's N GP
-runs through gpfd.evolve with its verbose output kept word for word, the per-run files kept
-beside it, and gpfd's method-level verdict read back from what it printed."""
+runs through gpfd.evolve with its verbose output shown, the runs' per-run rows kept in the
+label's runs.csv (result_rows.py; the GP's own directories stay in the work directory), and
+gpfd's method-level verdict read back from what it printed."""
 
 import contextlib
 import csv
 import io
 import re
-import shutil
 import sys
 import time
 
-import gpfd
+import result_rows
 
-# Each run's files kept in the results (the GP's own directories stay in the work directory).
-KEPT = ("best.features", "config.toml", "run.json", "validation.csv", "confirmation.csv")
+import gpfd
 
 
 class Tee(io.TextIOBase):
@@ -40,9 +39,9 @@ def parse_set(values, program):
     return settings
 
 
-def run_task(env, args, settings, dest, work):
-    """gpfd.evolve(env=env, runs=args.runs) into work, verbose; copies log.txt, runs.csv and each
-    run's KEPT files into dest, with wall.txt. Returns read_task(dest)."""
+def run_task(env, args, settings, work):
+    """gpfd.evolve(env=env, runs=args.runs) into work, verbose. Returns (the runs' rows, the
+    task's facts: wall seconds and gpfd's verdict line)."""
     log = io.StringIO()
     start = time.monotonic()
     with contextlib.redirect_stdout(Tee(sys.stdout, log)):
@@ -57,37 +56,48 @@ def run_task(env, args, settings, dest, work):
             set=[f"{k}={v}" for k, v in settings.items()] or None,
         )
     wall = time.monotonic() - start
-    dest.mkdir(parents=True, exist_ok=True)
-    (dest / "log.txt").write_text(log.getvalue())
-    (dest / "wall.txt").write_text(f"{wall:.1f}\n")
-    shutil.copy(work / "runs.csv", dest / "runs.csv")
-    for r in range(1, args.runs + 1):
-        name = f"run-{r:02d}"
-        (dest / name).mkdir(exist_ok=True)
-        for file in KEPT:
-            if (work / name / file).is_file():
-                shutil.copy(work / name / file, dest / name / file)
-    return read_task(dest)
+    verdict = [line for line in log.getvalue().splitlines() if re.match(r"\d+ runs: ", line)]
+    facts = {"wall_s": f"{wall:.1f}", "verdict": verdict[0] if verdict else "(no verdict printed)"}
+    return result_rows.suite_task_rows(env, work), facts
 
 
-def read_task(dest):
-    """(runs.csv's rows, the summary's common fields) of a task's kept files in dest: runs.csv,
-    log.txt (gpfd's verdict line), wall.txt (absent: no wall time)."""
-    with open(dest / "runs.csv", newline="") as f:
-        runs = list(csv.DictReader(f))
-    log = (dest / "log.txt").read_text()
-    verdict = [line for line in log.splitlines() if re.match(r"\d+ runs: ", line)]
-    p = re.search(r"Wilcoxon signed-rank over runs p = (\S+)\)", verdict[0]) if verdict else None
-    wall = dest / "wall.txt"
-    return runs, {
+def task_rows(out, task):
+    """A task's rows of the label's runs.csv (none without it)."""
+    path = out / "runs.csv"
+    return [r for r in result_rows.read_csv(path) if r["task"] == task] if path.is_file() else []
+
+
+def recorded(out, task):
+    """The task's row of the label's summary.csv: its facts as recorded (wall seconds, verdict,
+    command); empty without one."""
+    path = out / "summary.csv"
+    rows = result_rows.read_csv(path) if path.is_file() else []
+    return next((r for r in rows if r["task"] == task), {})
+
+
+def keep_rows(out, task, rows):
+    """Writes the task's rows into the label's runs.csv in place of its earlier ones (the other
+    tasks' rows kept where they were; a new task's at the end)."""
+    path = out / "runs.csv"
+    kept = result_rows.read_csv(path) if path.is_file() else []
+    at = next((i for i, r in enumerate(kept) if r["task"] == task), len(kept))
+    others = [r for r in kept if r["task"] != task]
+    out.mkdir(parents=True, exist_ok=True)
+    result_rows.write_csv(path, others[:at] + rows + others[at:], first=("task", "run"))
+
+
+def summarize(runs, facts):
+    """The summary's common fields of a task's rows and facts (wall_s, verdict)."""
+    p = re.search(r"Wilcoxon signed-rank over runs p = (\S+)\)", facts["verdict"])
+    return {
         "runs": len(runs),
         "discovered": sum(r["returned"] == "discovered" for r in runs),
         "wilcoxon_p": p.group(1) if p else "",
         "mean_original": mean(runs, "original_mean"),
         "mean_no_learning": mean(runs, "no_learning_mean"),
         "mean_reported": mean(runs, "reported_mean"),
-        "wall_s": wall.read_text().strip() if wall.is_file() else "",
-        "verdict": verdict[0] if verdict else "(no verdict printed)",
+        "wall_s": facts.get("wall_s", ""),
+        "verdict": facts["verdict"],
     }
 
 

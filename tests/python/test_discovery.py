@@ -183,19 +183,19 @@ def test_assess_returns_the_statistics_table(cli, tmp_path):
 
 
 def test_load_run_reads_a_results_directory(repo):
-    run = gpfd.load_run(repo / "docs/results/paper/fig1/evolve-cartpole", as_frame=False)
-    assert run.finished and run.generations == 50
-    assert run.config["env"]["name"] == "cartpole"
-    assert run.history["generation"].tolist() == list(range(50))
+    run = gpfd.load_run(repo / "tests/data/results/acrobot-quick-run", as_frame=False)
+    assert run.finished and run.generations == 15
+    assert run.config["env"]["name"] == "acrobot"
+    assert run.history["generation"].tolist() == list(range(15))
     assert run.best is not None
-    assert run.best.env == "cartpole" and run.best_of(49).n_features >= 1
+    assert run.best.env == "acrobot" and run.best_of(14).n_features >= 1
     with pytest.raises(FileNotFoundError, match="holds no gpfd run"):
         gpfd.load_run(repo / "docs")
 
 
 def test_pandas_tables_when_pandas_is_installed(repo):
     pandas = pytest.importorskip("pandas")
-    run = gpfd.load_run(repo / "docs/results/paper/fig1/evolve-cartpole")
+    run = gpfd.load_run(repo / "tests/data/results/acrobot-quick-run")
     assert isinstance(run.history, pandas.DataFrame)
 
 

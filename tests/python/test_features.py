@@ -222,7 +222,7 @@ def test_save_and_pickle_round_trip(control_file, tmp_path):
 
 
 def test_discovered_files_in_the_repository_evaluate_like_their_export(cli, repo):
-    for path in sorted((repo / "docs/results/paper").glob("*/evolve-*/best.features")):
+    for path in sorted((repo / "tests/data/results/features").glob("*.features")):
         fs = gpfd.FeatureSet.load(str(path))
         namespace: dict[str, Any] = {}
         exec(cli_text(cli, "features", "export", path, "--format", "python"), namespace)

@@ -179,7 +179,7 @@ def test_gpfd_reads_a_committed_run_and_formats_its_config_alike(cli, repo, tmp_
     # config (the run predates keys added since, gp.distinct_offspring among them: they read as
     # their defaults); the run is finished, so nothing is computed.
     run = tmp_path / "run"
-    shutil.copytree(repo / "docs/results/robust-quick/new/fig5/evolve-acrobot-quick/run-02", run)
+    shutil.copytree(repo / "tests/data/results/acrobot-quick-run", run)
     done = subprocess.run(
         [cli, "evolve", str(run / "config.toml"), "--resume", str(run)],
         capture_output=True,
