@@ -53,6 +53,10 @@ def _parameter_fields(
     if what in ("data", "attribute", "property"):
         if obj is not None and obj.__doc__ == type(obj).__doc__:
             lines.clear()  # a constant's docstring is its type's (int's, str's): the page says more
+        # A property bound with nanobind: its type from its getter's signature, "def (self) -> T".
+        signature = getattr(getattr(obj, "fget", None), "__nb_signature__", None)
+        if signature:
+            lines += ["", f":type: {signature[0][0].rsplit(' -> ', 1)[1]}"]
         _attribute_docs[name] = list(lines)
         return
     if what not in ("function", "method", "class"):
