@@ -37,7 +37,12 @@ Callback = Callable[[dict[str, Any]], Any]
 
 
 def builtin_configs() -> list[str]:
-    """The names of the shipped configs (configs/NAME.toml), usable as ``config=``."""
+    """The names of the shipped configs (configs/NAME.toml), usable as ``config=``.
+
+    Example::
+
+        gpfd.builtin_configs()  # ["acrobot-quick", "acrobot", "cartpole-quick", ...]
+    """
     return list(_core.builtin_configs())
 
 
@@ -449,6 +454,12 @@ def evolve(
     the run falls back to its last checkpoint (the end of the last complete generation;
     validation and confirmation start over), and resuming it gives the run an uninterrupted one
     gives. Interrupted in generation 0, before any checkpoint, a fresh run leaves no directory.
+
+    Example::
+
+        run = gpfd.evolve("cartpole-quick", seed=1, threads=2)
+        print(run.best.show())  # the features it returns, one per line
+        run = gpfd.evolve(env="MountainCarContinuous-v0", time_budget="2m", threads=2)
     """
     threads = _whole("threads", threads, 0)
     if generations is not None:
@@ -536,7 +547,13 @@ def fitness(
 ) -> float:
     """GP's fitness of a feature set: the mean score of the config's short learning trials, as
     one evaluation in ``gpfd evolve`` computes it (run::trialFitness with ``Rng(seed)``). An
-    environment stepped in Python runs in this process (default config ``user-env``)."""
+    environment stepped in Python runs in this process (default config ``user-env``).
+
+    Example::
+
+        fs = gpfd.FeatureSet.parse("th * dth", env="cartpole")
+        gpfd.fitness(fs, "cartpole-quick", seed=1)  # a float: the same for the same seed
+    """
     sets = [_feature_set(features, "features")]
     env = _twin_or_gymnasium(env, env_kwargs, native, None)
     return _fitness_of_each(sets, config, env, seed, set, env_kwargs)[0]
@@ -556,7 +573,13 @@ def fitness_of_each(
     has a vector form, the evaluations play together in one vector environment (one lockstep
     group, as ``evolve`` plays a generation's evaluations), each vector step advancing all their
     episodes. Each value is the one ``fitness`` gives where the vector form seeds each lane
-    (gpfd's own environments, SyncVectorEnv)."""
+    (gpfd's own environments, SyncVectorEnv).
+
+    Example::
+
+        sets = [gpfd.FeatureSet.parse(text, env="cartpole") for text in ("th * dth", "x + th")]
+        gpfd.fitness_of_each(sets, "cartpole-quick", seed=1)  # [fitness of each set]
+    """
     if isinstance(features, (FeatureSet, str, os.PathLike)):
         raise TypeError("fitness_of_each takes a list of feature sets; fitness takes one")
     sets = [_feature_set(f, f"features[{i}]") for i, f in enumerate(features)]
@@ -658,6 +681,11 @@ def assess(
         settings are chosen on the task as gpfd.evolve chooses them.
     executor: runs those runs on this executor's workers, as gpfd.evolve's ``executor``.
     params: ``k=v`` for the environment or the learner, like ``--param``.
+
+    Example::
+
+        table = gpfd.assess(run.best, config="cartpole-quick", runs=10, out="results/check")
+        table["set"], table["mean_final"]  # original, the set, no-learning: a row each
     """
     if isinstance(features, (FeatureSet, str, os.PathLike)):
         features = [features]
@@ -703,7 +731,21 @@ def assess(
 
 @dataclass
 class Run:
-    """A results directory of ``gpfd evolve`` (or ``gpfd.evolve``)."""
+    """A results directory of ``gpfd evolve`` (or ``gpfd.evolve``).
+
+    Attributes:
+        dir: The results directory.
+        config: config.toml, fully resolved.
+        info: run.json: seed, version, revision, threads.
+        history: generations.csv: a DataFrame with pandas, else a dict of arrays.
+        best: best.features: the best features found so far.
+        finished: All the config's generations are done (or those asked for).
+
+    Example::
+
+        run = gpfd.load_run("results/cartpole-quick")  # or what gpfd.evolve returns
+        print(run.generations, run.finished, run.best_of(0).show())
+    """
 
     dir: Path
     config: dict[str, Any]  # config.toml, fully resolved
@@ -724,7 +766,13 @@ class Run:
 
 
 def load_run(directory: str | os.PathLike, as_frame: bool | None = None) -> Run:
-    """Reads a results directory: its config, run.json, generations.csv and best.features."""
+    """Reads a results directory: its config, run.json, generations.csv and best.features.
+
+    Example::
+
+        run = gpfd.load_run("results/cartpole-quick", as_frame=False)
+        run.history["best"][-1], run.best.show()  # the last generation's best GP fitness
+    """
     path = Path(directory)
     if not (path / "config.toml").is_file():
         raise FileNotFoundError(f"{path} holds no gpfd run (no config.toml)")

@@ -93,6 +93,12 @@ class GpfdEnv(gym.Env):
     piece's orientations, column clipped), and ``info["action_mask"]`` (bool, the shape of the
     action space's choices: 4 x cols for Tetris) marks the legal ones; Tetris'
     :meth:`afterstates` lists every placement with the state it leads to.
+
+    Example::
+
+        env = gymnasium.make("gpfd/Swimmer-v0", segments=5)
+        obs, info = env.reset(seed=0)
+        env.unwrapped.params["segments"], env.unwrapped.state_names  # 5, ("dGx", "dGy", ...)
     """
 
     metadata: dict[str, Any] = {"render_modes": list(render.MODES), "render_fps": 50}

@@ -11,7 +11,15 @@ from gpfd._core import InputError
 
 class EnvError(RuntimeError):
     """A Gymnasium environment stepped by gpfd misbehaved: it raised, or returned an observation
-    that is not finite or not of its space's size."""
+    that is not finite or not of its space's size.
+
+    Example::
+
+        try:
+            gpfd.evolve(env=make_my_env, threads=2)
+        except gpfd.EnvError as e:
+            print(e)  # names the environment, the call and the step
+    """
 
 
 # Tracebacks and reprs name the classes where users find them, gpfd.EnvError and gpfd.InputError;

@@ -62,6 +62,11 @@ class Task:
     left_out: the variables that a returned feature must not depend on.
     by_sign: only the needed features' signs matter (the best action of a discrete task is where
     one is below 0), so a set carries them when a linear function of it has their sign.
+
+    Example::
+
+        t = gpfd.planted.task("Product")
+        t.gym_id, t.variables, [name for name, f in t.needed]  # ..., 2, ["x0 * x1"]
     """
 
     name: str
@@ -205,7 +210,12 @@ TASKS: dict[str, Task] = {
 
 def task(name: str) -> Task:
     """The task `name` ("Product") or its Gymnasium id; gpfd.InputError naming the tasks
-    otherwise."""
+    otherwise.
+
+    Example::
+
+        env = gymnasium.make(gpfd.planted.task("Product").gym_id)  # gpfd/PlantedProduct-v0
+    """
     for t in TASKS.values():
         if name in (t.name, t.gym_id):
             return t

@@ -63,7 +63,14 @@ def make_vec_env(
     seed + i at the first reset (SB3's own convention). A Gymnasium id with a twin in gpfd
     (gpfd.twins: CartPole-v1, Acrobot-v1, Pendulum-v1, MountainCar-v0, MountainCarContinuous-v0)
     steps the twins, the same episodes as Gymnasium's bit for bit, unless ``native=False`` or
-    ``env_kwargs`` holds a keyword the twin does not take; one line on stderr says so."""
+    ``env_kwargs`` holds a keyword the twin does not take; one line on stderr says so.
+
+    Example::
+
+        venv = gpfd.sb3.make_vec_env("CartPole-v1", n_envs=8, seed=0, features=run.best,
+                                     with_original=True)
+        stable_baselines3.PPO("MlpPolicy", venv, seed=0).learn(20_000)
+    """
     if isinstance(n_envs, bool) or not isinstance(n_envs, int) or n_envs < 1:
         raise InputError(f"must be a whole number of at least 1, not {n_envs!r} (n_envs=)")
     kwargs = dict(env_kwargs or {})
@@ -113,7 +120,13 @@ def _same_step_vector(env_id: str, n_envs: int, kwargs: dict[str, Any]) -> Vecto
 class GpfdVecEnv(_SB3VecEnv):
     """``vector`` (a Gymnasium VectorEnv in same-step autoreset) as an SB3 VecEnv. features: what
     the agent sees instead of the observation (followed by it when ``with_original``), computed
-    for all instances in one call of the compiled feature set."""
+    for all instances in one call of the compiled feature set.
+
+    Example::
+
+        vector = gymnasium.make_vec("gpfd/CartPole-v0", 8, autoreset_mode="SameStep")
+        venv = GpfdVecEnv(vector, features=run.best, rescale_actions=True)
+    """
 
     def __init__(
         self,

@@ -30,7 +30,13 @@ _MODES = {
 
 
 class TwinVectorEnv(VectorEnv):
-    """``num_envs`` twins of Gymnasium's ``task`` (a key of gpfd.twins.TWINS)."""
+    """``num_envs`` twins of Gymnasium's ``task`` (a key of gpfd.twins.TWINS).
+
+    Example::
+
+        envs = gymnasium.make_vec("gpfd/CartPole-v1", num_envs=64, autoreset_mode="SameStep")
+        obs, info = envs.reset(seed=0)  # instance i as gymnasium.make("CartPole-v1") seeded i
+    """
 
     def __init__(
         self,

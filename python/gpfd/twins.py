@@ -94,7 +94,13 @@ def reference(task: str, kwargs: dict[str, Any]) -> gym.Env:
 
 
 class TwinEnv(gym.Env):
-    """The twin of Gymnasium's ``task`` (a key of ``TWINS``), one environment."""
+    """The twin of Gymnasium's ``task`` (a key of ``TWINS``), one environment.
+
+    Example::
+
+        env = gymnasium.make("gpfd/CartPole-v1")  # Gymnasium's CartPole-v1, stepped in C++
+        obs, info = env.reset(seed=0)  # as gymnasium.make("CartPole-v1") starts, bit for bit
+    """
 
     metadata: dict[str, Any] = {"render_modes": []}
 

@@ -77,7 +77,14 @@ def resolve(
 def run_name(name: str) -> str:
     """The results directory's default name for the registered environment `name` (resolve):
     a Gymnasium id or EnvPool task as a plain name ("ALE/Pong-v5" -> "ALE-Pong-v5"), a callable's
-    name, or "user-env" where nothing usable is left (a lambda)."""
+    name, or "user-env" where nothing usable is left (a lambda).
+
+    Example::
+
+        from gpfd.user_env import run_name
+
+        run_name("ALE/Pong-v5"), run_name("python:make_env")  # "ALE-Pong-v5", "make_env"
+    """
     if name.startswith("python:"):  # A callable's qualified name: "f.<locals>.make" -> "make".
         base = name.removeprefix("python:").rsplit(".", 1)[-1]
         base = "" if base.startswith("<") else base  # "<lambda>" names nothing.

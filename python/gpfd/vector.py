@@ -67,7 +67,14 @@ def lane_seeds(seed: Any, num_envs: int) -> list[int | None]:
 
 
 class GpfdVectorEnv(VectorEnv):
-    """N instances of the gpfd environment ``gpfd_env`` (see gpfd.envs.GpfdEnv)."""
+    """N instances of the gpfd environment ``gpfd_env`` (see gpfd.envs.GpfdEnv).
+
+    Example::
+
+        envs = gymnasium.make_vec("gpfd/CartPole-v0", num_envs=64, actions="discrete")
+        obs, info = envs.reset(seed=0)  # instance i seeded with 0 + i
+        envs.unwrapped.engine  # "batched": one C++ call steps all 64
+    """
 
     def __init__(
         self,

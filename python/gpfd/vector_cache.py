@@ -48,7 +48,12 @@ def count(name: str | None = None) -> int:
 
 def close(name: str | None = None) -> None:
     """Closes the idle vector environments of `name` (of every environment where None). Every
-    one is closed even if some ``close`` raises; then the last error propagates."""
+    one is closed even if some ``close`` raises; then the last error propagates.
+
+    Example::
+
+        gpfd.vector_cache.close()  # the runs are over: close every kept vector environment
+    """
     keys = [key for key in _idle if name is None or key[0] == name]
     with contextlib.ExitStack() as stack:
         for key in keys:

@@ -169,6 +169,11 @@ class VectorFactory(VectorSource):
     ``make()``; without it, lane 0 of ``make_vec(1)``.
 
     Pass it as ``env=`` to gpfd.evolve or gpfd.fitness.
+
+    Example::
+
+        factory = gpfd.VectorFactory(lambda n: MyVectorEnv(n), per_lane_seeds=True)
+        run = gpfd.evolve(env=factory, threads=2)
     """
 
     def __init__(

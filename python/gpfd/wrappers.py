@@ -47,7 +47,13 @@ def check_features(env, features: FeatureSet, space: spaces.Space) -> None:
 
 class FeatureObservation(gym.ObservationWrapper, gym.utils.RecordConstructorArgs):
     """Observations become ``features(obs)`` (float64), followed by the original observation when
-    ``with_original``: what gpfd's learners see in discovery."""
+    ``with_original``: what gpfd's learners see in discovery.
+
+    Example::
+
+        env = FeatureObservation(gymnasium.make("CartPole-v1"), run.best, with_original=True)
+        obs, info = env.reset(seed=0)  # the features, then the 4 state variables
+    """
 
     def __init__(self, env: gym.Env, features: FeatureSet, with_original: bool = False):
         gym.utils.RecordConstructorArgs.__init__(
@@ -66,7 +72,13 @@ class FeatureObservation(gym.ObservationWrapper, gym.utils.RecordConstructorArgs
 
 
 class VectorFeatureObservation(VectorObservationWrapper):
-    """FeatureObservation for a vector environment: one batch-kernel call per step."""
+    """FeatureObservation for a vector environment: one batch-kernel call per step.
+
+    Example::
+
+        envs = VectorFeatureObservation(gymnasium.make_vec("gpfd/CartPole-v0", 64), run.best)
+        obs, info = envs.reset(seed=0)  # 64 rows of features
+    """
 
     def __init__(self, env: VectorEnv, features: FeatureSet, with_original: bool = False):
         super().__init__(env)

@@ -206,12 +206,20 @@ void bindFeatureSet(nb::module_& m) {
       .def("__call__", &call, nb::arg("obs"), nb::arg("out") = nb::none(),
            "The features of one observation (shape (d,) -> (k,)) or of N (shape (N, d) -> (N, "
            "k)), as float64. `out`, if given, receives them (a C-contiguous float64 array).")
-      .def_prop_ro("env", [](const FeatureSet& s) { return s.file().env; })
-      .def_prop_ro("variables", [](const FeatureSet& s) { return s.file().variables; })
-      .def_prop_ro("meta", [](const FeatureSet& s) { return s.file().meta; })
-      .def_prop_ro("name", &FeatureSet::name)
-      .def_prop_ro("input_dim", &FeatureSet::inputDim)
-      .def_prop_ro("n_features", &FeatureSet::outputDim)
+      .def_prop_ro(
+          "env", [](const FeatureSet& s) { return s.file().env; },
+          "The environment the features read: a gpfd environment ('cartpole') or a Gymnasium "
+          "id; '' where none was named.")
+      .def_prop_ro(
+          "variables", [](const FeatureSet& s) { return s.file().variables; },
+          "The names of the variables the features read, in the observation's order.")
+      .def_prop_ro(
+          "meta", [](const FeatureSet& s) { return s.file().meta; },
+          "The features file's `# key: value` lines (experiment, seed, verdict, ...).")
+      .def_prop_ro("name", &FeatureSet::name,
+                   "The set's name: the features file's stem (best), else 'features'.")
+      .def_prop_ro("input_dim", &FeatureSet::inputDim, "How many variables it reads: d.")
+      .def_prop_ro("n_features", &FeatureSet::outputDim, "How many features it computes: k.")
       .def_prop_ro(
           "native", [](const FeatureSet& s) { return s.map().isNative(); },
           "Whether one observation runs JIT-compiled code.")
