@@ -80,6 +80,23 @@ TEST(ArsRun, EvolveChoosesItsSettingsAndIsTheSameOnOneAndTwoThreads) {
   EXPECT_NE(readText(dir + "/summary.csv").find("original"), std::string::npos);
 }
 
+// The shipped config with ARS in the loop (configs/user-env-ars.toml) on a twin of Gymnasium's
+// task: it chooses V1 or V2 on the task and runs the whole protocol with ARS.
+TEST(ArsRun, TheShippedUserEnvArsConfigRunsWithArsInTheLoop) {
+  const auto dir = freshDir("user-env-ars");
+  const auto run = runGpfd("evolve user-env-ars --env Pendulum-v1 --population 4 --generations 1 " +
+                           std::string("--seed 2 --threads 2 --quiet --out ") + dir);
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto written = run::loadExperimentConfig(dir + "/config.toml");
+  EXPECT_EQ(written.learner, "ars");
+  EXPECT_EQ(written.env, "Pendulum-v1");
+  EXPECT_TRUE(written.learnerChoices.empty());
+  const auto normalise = written.learnerParams.at("normalise");
+  EXPECT_TRUE(normalise == "false" || normalise == "true") << normalise;
+  EXPECT_EQ(written.learnerParams.at("greedy_last"), "true");
+  EXPECT_NE(readText(dir + "/confirmation.csv").find("original"), std::string::npos);
+}
+
 TEST(ArsRun, TrialsTogetherEqualEachTrialAloneOnTheQuickConfigsEnvironments) {
   const std::vector<std::pair<std::string, std::string>> cases{
       {"cartpole", "x\nsin(th) * dth\ncos(th)\n"},
