@@ -47,6 +47,7 @@ def run_task(env, args, settings, work):
     with contextlib.redirect_stdout(Tee(sys.stdout, log)):
         gpfd.evolve(
             env=env,
+            config=getattr(args, "config", None),
             seed=args.seed,
             threads=args.threads,
             runs=args.runs,
