@@ -12,6 +12,7 @@
 
 #include "bindings.hpp"
 #include "env_batch.hpp"
+#include "gpfd/env/numpy_scalar.hpp"
 #include "gpfd/util/error.hpp"
 #include "python_call.hpp"
 #include "trial_runner.hpp"
@@ -79,7 +80,7 @@ class PythonEnvironment final : public env::Environment {
     if (native_ != nullptr) {
       // What GpfdEnv.step does through the adapter: the action as the space's dtype.
       for (std::size_t c = 0; c < action.size(); ++c) {
-        nativeAction_[c] = roundToFloat_ ? static_cast<float>(action[c]) : action[c];
+        nativeAction_[c] = roundToFloat_ ? env::numpy_scalar::toFloat32(action[c]) : action[c];
       }
       double reward = 0.0;
       bool terminated = false, truncated = false;

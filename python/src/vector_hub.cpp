@@ -21,6 +21,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "gpfd/env/numpy_scalar.hpp"
 #include "gpfd/fibers/scheduler.hpp"
 #include "python_call.hpp"
 
@@ -293,8 +294,10 @@ void VectorHub::nativeStep(const std::vector<std::size_t>& stepping) {
   forEachLane(stepping, [&](const env::BatchBuffers& io, std::size_t l, std::size_t p) {
     for (std::size_t c = 0; c < components_; ++c) {
       const double a = io.action[c * io.stride + l];
-      // As the action array of the space's dtype would hold it.
-      n.actions[p * components_ + c] = actionKind_ == ActionKind::F32 ? static_cast<float>(a) : a;
+      // As the action array of the space's dtype would hold it (toFloat32: GCC 12 has dropped
+      // such a cast, numpy_scalar.hpp).
+      n.actions[p * components_ + c] =
+          actionKind_ == ActionKind::F32 ? env::numpy_scalar::toFloat32(a) : a;
     }
   });
   n.engine->step(n.actions.data(), {n.obs.data(), n.rewards.data(), n.terminated.get(),

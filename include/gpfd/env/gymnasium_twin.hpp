@@ -63,7 +63,7 @@ class GymnasiumTwin : public Environment {
   // One step of the unwrapped environment; writes the observation.
   virtual StepResult advance(std::span<const double> action, ActionKind kind) = 0;
   // The observation as the float32 values Gymnasium's observation holds, once more after the
-  // twin's own casts: GCC 12 at -O3 has stored a pair of static_cast<float> results unrounded
+  // twin's own casts: GCC 12.2 has stored a pair of static_cast<float> results unrounded
   // (seen in Acrobot-v1's and Pendulum-v1's observations). Called after start, advance and by
   // setState.
   void roundObservation();

@@ -15,9 +15,11 @@ namespace gpfd::env::numpy_scalar {
 
 enum class Promotion : std::uint8_t { Nep50, Legacy };
 
-// x rounded to float32 (NumPy's astype(np.float32)), through a volatile: GCC 12 at -O3 dropped
-// a plain static_cast<float> of MountainCarContinuous-v0's state, taking the value to be a
-// float32 already on a path where it is not.
+// x rounded to float32 (NumPy's astype(np.float32)), through a volatile: GCC 12.2's SLP
+// vectoriser (-O2 and -O3) drops a pair of static_cast<float> results stored side by side into
+// doubles, storing them unrounded (seen in MountainCarContinuous-v0's state and Acrobot-v1's and
+// Pendulum-v1's observations; two adjacent `out[i] = static_cast<float>(x)` stores reproduce it,
+// and -fno-tree-slp-vectorize makes it go). Where a float32 rounding matters, use this.
 inline double toFloat32(double x) {
   volatile float rounded = static_cast<float>(x);
   return rounded;
