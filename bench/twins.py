@@ -9,7 +9,8 @@
    num_threads=1)``, where envpool is installed: ``pip install envpool``);
 2. one fitness evaluation of a group of 16 feature sets (``gpfd.fitness_of_each``, user-env's
    trial, its learner's updates cut to --updates on both sides) on the twin and with
-   ``native=False``, wall seconds;
+   ``native=False``, wall seconds and CPU seconds of the process (every thread's: the cost,
+   whatever the load and the threads);
 3. a whole ``gpfd.evolve("cartpole-quick", ...)`` run on gpfd's own cart-pole (as configured,
    and set to CartPole-v1's task: discrete actions, 500 steps), on ``env="CartPole-v1"`` (the
    twin) and with ``native=False``, wall seconds, and the GP generations' work (their evaluations
@@ -146,26 +147,29 @@ def sixteen_sets(dim):
 def fitness_table(repeats, updates):
     print(
         f"\n2. a fitness evaluation of 16 sets (user-env's trial with updates = {updates}), "
-        "wall seconds"
+        "wall seconds and CPU seconds of this process (all its threads)"
     )
-    print("| task | twin | native=False | ratio |")
-    print("|---|---|---|---|")
+    print("| task | twin wall | native=False wall | ratio | twin CPU | native=False CPU | ratio |")
+    print("|---|---|---|---|---|---|---|")
     settings = {"learner.params.updates": updates, "learner.params.step": "rprop"}
     for task in TASKS:
         dim = gym.make(task).observation_space.shape[0]
         sets = sixteen_sets(dim)
-        times = {True: [], False: []}
-        values = {}
+        wall = {True: [], False: []}
+        cpu = {True: [], False: []}
         for _ in range(repeats):
             for native in (True, False):
-                start = time.perf_counter()
+                start, start_cpu = time.perf_counter(), time.process_time()
                 with contextlib.redirect_stderr(io.StringIO()):
-                    values[native] = gpfd.fitness_of_each(
-                        sets, env=task, set=settings, seed=1, native=native
-                    )
-                times[native].append(time.perf_counter() - start)
-        twin, python = statistics.median(times[True]), statistics.median(times[False])
-        print(f"| {task} | {twin:.3f} | {python:.2f} | {python / twin:,.0f}x |")
+                    gpfd.fitness_of_each(sets, env=task, set=settings, seed=1, native=native)
+                wall[native].append(time.perf_counter() - start)
+                cpu[native].append(time.process_time() - start_cpu)
+        w = {k: statistics.median(v) for k, v in wall.items()}
+        c = {k: statistics.median(v) for k, v in cpu.items()}
+        print(
+            f"| {task} | {w[True]:.3f} | {w[False]:.2f} | {w[False] / w[True]:,.0f}x "
+            f"| {c[True]:.3f} | {c[False]:.2f} | {c[False] / c[True]:,.0f}x |"
+        )
 
 
 def gp_work(out):
