@@ -70,8 +70,21 @@ def main(argv: list[str]) -> int:
             return 0
 
 
+def _close_environments() -> None:
+    """Closes the vector environments this worker parked (gpfd.vector_cache), which os._exit
+    would skip: their own processes and files end with them. An error is printed."""
+    cache = sys.modules.get("gpfd.vector_cache")  # Imported where one was parked.
+    if cache is None:
+        return
+    try:
+        cache.close()
+    except Exception:
+        traceback.print_exc()
+
+
 if __name__ == "__main__":
     code = main(sys.argv)
+    _close_environments()
     sys.stdout.flush()
     sys.stderr.flush()
     os._exit(code)  # No interpreter teardown: native threads and environments just end.

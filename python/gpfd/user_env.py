@@ -135,6 +135,18 @@ class Adapter:
         else:
             raise TypeError(f"{name}: gpfd drives Box or Discrete action spaces, not {space}")
         self._steps = 0  # The steps of the episode so far.
+        self._closed = False
+
+    def close(self) -> None:
+        """Closes the environment (``env.close()``), once: gpfd is done with this instance (its
+        C++ environment's destructor calls it). EnvError where the environment's close raises."""
+        if self._closed:
+            return
+        self._closed = True
+        try:
+            self.env.close()
+        except Exception as e:
+            raise EnvError(f"{self.name}: close() raised {type(e).__name__}: {e}") from e
 
     def reset(self, seed: int) -> np.ndarray:
         self._steps = 0
