@@ -84,11 +84,19 @@ class _Worker:
 
     def __init__(self, number: int) -> None:
         self.number = number
+        self.owner = threading.current_thread()  # The worker ends when this thread does.
         task_read, self.tasks = os.pipe()
         self.results, result_write = os.pipe()
         try:
             self.process = subprocess.Popen(
-                [sys.executable, "-m", "gpfd._worker", str(task_read), str(result_write)],
+                [
+                    sys.executable,
+                    "-m",
+                    "gpfd._worker",
+                    str(task_read),
+                    str(result_write),
+                    str(os.getpid()),
+                ],
                 pass_fds=(task_read, result_write),
                 stdin=subprocess.DEVNULL,
                 start_new_session=True,  # Ctrl-C at a terminal reaches this process only.
@@ -151,9 +159,8 @@ class WorkerPool(Executor):
         self._threads: list[threading.Thread] = []
         try:
             for number in range(workers):
-                worker = self._start_worker()
                 thread = threading.Thread(
-                    target=self._serve, args=(worker,), name=f"gpfd-worker-{number}", daemon=True
+                    target=self._serve, name=f"gpfd-worker-{number}", daemon=True
                 )
                 thread.start()
                 self._threads.append(thread)
@@ -167,12 +174,17 @@ class WorkerPool(Executor):
         return len(self._threads)
 
     def _start_worker(self) -> _Worker:
+        """A fresh worker, started by (and ending with) the calling thread of the pool."""
         with self._lock:
             number, self._started = self._started, self._started + 1
         worker = _Worker(number)
         with self._lock:
             self._workers.append(worker)
         return worker
+
+    def _workers_of(self, thread: threading.Thread) -> list[_Worker]:
+        with self._lock:
+            return [worker for worker in self._workers if worker.owner is thread]
 
     def submit(self, fn: Callable[..., Any], /, *args: Any, **kwargs: Any) -> Future:
         if kwargs:
@@ -203,8 +215,24 @@ class WorkerPool(Executor):
             return False
         return True
 
-    def _serve(self, worker: _Worker) -> None:
-        """A thread per worker: the setup, then the queue's tasks one at a time until a None."""
+    def _serve(self) -> None:
+        """A thread per worker: starts it (and its replacements), sets it up, then runs the
+        queue's tasks one at a time until a None; returns once its worker has exited. A worker
+        ends with the thread that started it (gpfd._worker's parent-death signal), so this thread
+        outlives it: the worker closes what it holds first."""
+        try:
+            worker = self._start_worker()
+        except BaseException as e:
+            self._break(WorkerError(f"a worker did not start: {type(e).__name__}: {e}"))
+            return
+        try:
+            self._serve_with(worker)
+        finally:
+            for started in self._workers_of(threading.current_thread()):
+                started.close()  # The worker exits as it next reads ...
+                started.process.wait()  # ... or was ended (terminate).
+
+    def _serve_with(self, worker: _Worker) -> None:
         if not self._set_up(worker):
             return
         while True:
@@ -304,10 +332,12 @@ class WorkerPool(Executor):
         ones fail with WorkerError. After an interruption or an error."""
         self._terminating = True
         self.shutdown(wait=False, cancel_futures=True)
-        for worker in self._workers:
+        with self._lock:
+            workers = list(self._workers)
+        for worker in workers:
             if worker.process.poll() is None:
                 worker.process.terminate()
-        for worker in self._workers:
+        for worker in workers:
             try:
                 worker.process.wait(timeout=5)
             except subprocess.TimeoutExpired:
