@@ -5,7 +5,8 @@ pickled by cloudpickle.
 
 Frames in: first the parent's sys.path (a plain pickle), then one task per frame, cloudpickle of
 (function, args), the first being the pool's initializer. Frames out: one reply per task,
-("ok", value) or ("error", pickled exception or None, its type's name, its text, the traceback).
+("ok", value) or ("error", pickled exception or None, its type's name, its text, the traceback),
+or ("expired", text) where the task ran past its deadline (gpfd._deadline) and the worker ends.
 The worker ends when the TASKS pipe ends (exit 0), or when the parent ends it. SIGINT is
 ignored: Ctrl-C is the parent's to handle (it ends its workers). It dies with its parent, even
 in the middle of a task (a SIGKILLed parent closes nothing): on Linux by a parent-death signal
@@ -27,7 +28,7 @@ import traceback
 
 import cloudpickle
 
-from gpfd import _frames
+from gpfd import _deadline, _frames
 
 
 def _error_reply(error: BaseException) -> tuple:
@@ -90,6 +91,8 @@ def main(argv: list[str]) -> int:
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     tasks, results = int(argv[1]), int(argv[2])
     _die_with(int(argv[3]))
+    # A task past its deadline (gpfd._deadline): the pool is told where it was, then it ends.
+    _deadline.report = lambda text: _frames.send(results, ("expired", text))
     try:
         sys.path[:] = pickle.loads(_frames.receive_bytes(tasks))
     except EOFError:

@@ -113,14 +113,18 @@ class _Worker:
         return f"gpfd worker {self.number} (pid {self.process.pid})"
 
     def call(self, payload: bytes) -> tuple:
-        """Sends one task and returns its reply; WorkerError when the worker ends first."""
+        """Sends one task and returns its reply; WorkerError when the worker ends first (also
+        past the task's deadline, gpfd._deadline: naming where the task was)."""
         try:
             _frames.send_bytes(self.tasks, payload)
-            return _frames.receive(self.results)
+            reply = _frames.receive(self.results)
         except (OSError, EOFError):
             raise WorkerError(
                 f"{self.name()} {_how_it_ended(self.process)} while running a task"
             ) from None
+        if reply[0] == "expired":
+            raise WorkerError(f"{self.name()} ended: {reply[1]}")
+        return reply
 
     def close(self) -> None:
         """Ends the task pipe (the worker exits when it next reads) and the result pipe."""
