@@ -12,6 +12,7 @@ import pytest
 
 import gpfd.ray
 from gpfd import _jobs
+from point_env import Point
 
 
 class TaskCancelledError(Exception):
@@ -115,7 +116,7 @@ def test_a_failed_round_cancels_its_other_tasks_on_the_cluster(ray):
     """A task's error stops gpfd's round (gpfd._jobs.Jobs.map), which cancels the others: Ray
     cancels each."""
     executor = gpfd.ray.Executor()
-    jobs = _jobs.Jobs("python:ray-cancel", abs)
+    jobs = _jobs.Jobs("python:ray-cancel", Point)  # Never made: the stand-in runs nothing.
     ray.fails = 1
     results = jobs.map(executor, _jobs.fitness_group, "config", [(i,) for i in range(4)], 2)
     with pytest.raises(ValueError, match="the environment raised"):
