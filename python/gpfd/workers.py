@@ -12,8 +12,10 @@ again: a lost worker loses no task. A task that has lost ``attempts`` workers (3
 kills them) fails with WorkerError, naming the last worker and how it ended. A worker that cannot
 start or set up breaks the pool: every task not yet done fails with WorkerError, and so does
 every later submit. Workers run in a session of their own and ignore SIGINT: Ctrl-C reaches only
-this process, which ends them (``terminate``). gpfd.evaluator runs the discovery's work on such
-an executor.
+this process, which ends them (``terminate``); they die with this process, also when it is
+SIGKILLed in the middle of a task (gpfd._worker). A task that runs past its config's
+``task_timeout`` ends its worker (gpfd._deadline), which is then lost as above, the error naming
+where the task hung. gpfd.evaluator runs the discovery's work on such an executor.
 """
 
 from __future__ import annotations
