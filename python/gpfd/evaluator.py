@@ -154,6 +154,13 @@ class Evaluator:
         self._busy = True
         try:
             yield from results
+        except WorkerError as e:  # gpfd's pool: a task that lost its workers (or a timeout's).
+            if "resume=" in str(e):
+                raise
+            raise WorkerError(
+                f"{e}. The work stops; a discovery's directory keeps its last complete "
+                "generation, which resume= continues."
+            ) from e
         except BrokenExecutor as e:
             raise WorkerError(
                 f"the executor broke ({type(e).__name__}: {e}): one of its workers died and "

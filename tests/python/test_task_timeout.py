@@ -101,6 +101,7 @@ def test_a_task_hung_on_every_worker_stops_naming_the_step_and_resumes(tmp_path,
     text = str(caught.value)
     assert f"task_timeout={TIMEOUT} s in python:Hangs: step " in text, text
     assert "of its episode" in text and "the task has lost 3 workers" in text, text
+    assert "resume= continues" in text, text
     (tmp_path / "run-flags/armed").unlink()  # The environment mended: the run resumes.
     run = gpfd.evolve(
         resume=tmp_path / "run",
@@ -114,7 +115,9 @@ def test_a_task_hung_on_every_worker_stops_naming_the_step_and_resumes(tmp_path,
 
 def test_a_process_pool_breaks_with_a_clear_error(tmp_path):
     with process_pool(2) as executor, pytest.raises(WorkerError, match="executor broke"):
-        evolve(tmp_path, "pp", once=True, arm=True, **COMMON, executor=executor, task_timeout=5)
+        evolve(
+            tmp_path, "pp", once=True, arm=True, **COMMON, executor=executor, task_timeout=TIMEOUT
+        )
     assert (tmp_path / "pp-flags/hung").exists()
 
 
