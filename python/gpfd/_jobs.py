@@ -37,7 +37,7 @@ from typing import Any
 
 import cloudpickle
 
-from gpfd import _core, user_env
+from gpfd import _core, _deadline, user_env
 from gpfd.workers import WorkerError
 
 KEEP_JOBS = 16
@@ -64,7 +64,8 @@ class NeedJob:
 # ---- the worker's side: what this process holds ----
 
 _lock = threading.Lock()  # One task at a time per process (tasks hold the GIL while they step).
-_jobs: OrderedDict[str, tuple[str, str]] = OrderedDict()  # key -> (environment key, config)
+# key -> (environment key, config text, its task_timeout in seconds or None)
+_jobs: OrderedDict[str, tuple[str, str, float | None]] = OrderedDict()
 _envs: OrderedDict[str, tuple[str, Callable[[], Any]]] = OrderedDict()  # key -> (name, factory)
 _registered: dict[str, str] = {}  # environment name -> key of the factory registered as it here
 
@@ -80,26 +81,28 @@ def _install(key: str, payload: bytes) -> None:
     env_key, env_bytes, config_text = pickle.loads(payload)
     if env_key not in _envs:
         _keep(_envs, env_key, cloudpickle.loads(env_bytes), KEEP_ENVS)
-    _keep(_jobs, key, (env_key, config_text), KEEP_JOBS)
+    _keep(_jobs, key, (env_key, config_text, _deadline.seconds_of(config_text)), KEEP_JOBS)
 
 
 def run(key: str, payload: bytes | None, function: Callable[..., Any], *args: Any) -> Any:
     """A task, in a worker: ``function(config_text, *args)`` under the job `key`, with the job's
     environment registered under its name; NeedJob when this process holds no such job and
-    `payload` (the job, from Jobs.payload) is None."""
+    `payload` (the job, from Jobs.payload) is None. Past the config's ``task_timeout`` the
+    process ends (gpfd._deadline): the executor takes its worker as lost."""
     with _lock:
         if key not in _jobs or _jobs[key][0] not in _envs:
             if payload is None:
                 return NeedJob(key)
             _install(key, payload)
         _jobs.move_to_end(key)
-        env_key, config_text = _jobs[key]
+        env_key, config_text, timeout = _jobs[key]
         _envs.move_to_end(env_key)
         name, factory = _envs[env_key]
-        if _registered.get(name) != env_key:  # Registering again drops the learning tasks built.
-            user_env.register(name, factory)
-            _registered[name] = env_key
-        return function(config_text, *args)
+        with _deadline.guard(timeout):
+            if _registered.get(name) != env_key:  # Registering again drops the tasks built.
+                user_env.register(name, factory)
+                _registered[name] = env_key
+            return function(config_text, *args)
 
 
 def fitness_group(config_text: str, group: list[tuple[bytes, int]]) -> list[float]:

@@ -1,25 +1,34 @@
 """A worker process of gpfd's pool (gpfd.workers.WorkerPool), started as
-``python -m gpfd._worker TASKS RESULTS`` with two pipe descriptors. It never runs the user's
-``__main__``: everything it runs comes over the TASKS pipe (gpfd._frames), pickled by cloudpickle.
+``python -m gpfd._worker TASKS RESULTS PARENT`` with two pipe descriptors and the pool's pid. It
+never runs the user's ``__main__``: everything it runs comes over the TASKS pipe (gpfd._frames),
+pickled by cloudpickle.
 
 Frames in: first the parent's sys.path (a plain pickle), then one task per frame, cloudpickle of
 (function, args), the first being the pool's initializer. Frames out: one reply per task,
-("ok", value) or ("error", pickled exception or None, its type's name, its text, the traceback).
+("ok", value) or ("error", pickled exception or None, its type's name, its text, the traceback),
+or ("expired", text) where the task ran past its deadline (gpfd._deadline) and the worker ends.
 The worker ends when the TASKS pipe ends (exit 0), or when the parent ends it. SIGINT is
-ignored: Ctrl-C is the parent's to handle (it ends its workers).
+ignored: Ctrl-C is the parent's to handle (it ends its workers). It dies with its parent, even
+in the middle of a task (a SIGKILLed parent closes nothing): on Linux by a parent-death signal
+(SIGKILL once the thread of the pool that started it ends: that thread outlives a worker it is
+done with), elsewhere by a thread that watches the parent's pid.
 """
 
 from __future__ import annotations
 
+import ctypes
+import ctypes.util
 import os
 import pickle
 import signal
 import sys
+import threading
+import time
 import traceback
 
 import cloudpickle
 
-from gpfd import _frames
+from gpfd import _deadline, _frames
 
 
 def _error_reply(error: BaseException) -> tuple:
@@ -54,9 +63,36 @@ def _call(payload: bytes) -> tuple:
         return _error_reply(e)
 
 
+PR_SET_PDEATHSIG = 1  # prctl(2)'s option: the signal this process gets when its parent ends.
+WATCH_EVERY = 1.0  # Seconds between looks at the parent's pid where there is no prctl.
+
+
+def _die_with(parent: int) -> None:
+    """Ends this process (SIGKILL, nothing closed) when `parent` ends, also mid-task."""
+    libc = (
+        ctypes.CDLL(ctypes.util.find_library("c"), use_errno=True)
+        if sys.platform == "linux"
+        else None
+    )
+    if libc is not None and libc.prctl(PR_SET_PDEATHSIG, int(signal.SIGKILL), 0, 0, 0) == 0:
+        if os.getppid() != parent:  # It ended before the signal was asked for.
+            os._exit(1)
+        return
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            time.sleep(WATCH_EVERY)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="gpfd-parent-watch", daemon=True).start()
+
+
 def main(argv: list[str]) -> int:
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     tasks, results = int(argv[1]), int(argv[2])
+    _die_with(int(argv[3]))
+    # A task past its deadline (gpfd._deadline): the pool is told where it was, then it ends.
+    _deadline.report = lambda text: _frames.send(results, ("expired", text))
     try:
         sys.path[:] = pickle.loads(_frames.receive_bytes(tasks))
     except EOFError:
@@ -70,8 +106,21 @@ def main(argv: list[str]) -> int:
             return 0
 
 
+def _close_environments() -> None:
+    """Closes the vector environments this worker parked (gpfd.vector_cache), which os._exit
+    would skip: their own processes and files end with them. An error is printed."""
+    cache = sys.modules.get("gpfd.vector_cache")  # Imported where one was parked.
+    if cache is None:
+        return
+    try:
+        cache.close()
+    except Exception:
+        traceback.print_exc()
+
+
 if __name__ == "__main__":
     code = main(sys.argv)
+    _close_environments()
     sys.stdout.flush()
     sys.stderr.flush()
     os._exit(code)  # No interpreter teardown: native threads and environments just end.

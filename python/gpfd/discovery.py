@@ -360,9 +360,10 @@ def _as_argument(error: InputError, key: str) -> InputError:
     return error
 
 
-def _budget_value(value: Any) -> str:
-    """``time_budget=`` as a config value: seconds (a finite number) or text such as "10m";
-    InputError naming the argument (``(time_budget=)``), not the config key it becomes."""
+def _duration_value(name: str, value: Any) -> str:
+    """``time_budget=`` or ``task_timeout=`` (`name`) as a config value: seconds (a finite
+    number) or text such as "10m"; InputError naming the argument (``(name=)``), not the config
+    key it becomes. The config's reader checks the rest (above 0, the text's form)."""
     number = isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(
         value, bool
     )
@@ -370,9 +371,25 @@ def _budget_value(value: Any) -> str:
         return _toml_value(value)
     what = f"{value}" if number else f"{type(value).__name__} ({value!r})"
     raise InputError(
-        f'time_budget must be seconds (a finite number) or text such as "10m", not {what} '
-        "(time_budget=)"
+        f'{name} must be seconds (a finite number) or text such as "10m", not {what} ({name}=)'
     )
+
+
+def _task_timeout(value: Any, evaluator: Evaluator | None, env: Any) -> list[str]:
+    """``task_timeout=`` as overrides (none where None); InputError naming it where no worker
+    could be ended when a task hangs: an environment stepped in C++, or one stepped in this
+    process (one thread and no executor)."""
+    if value is None:
+        return []
+    setting = f"task_timeout={_duration_value('task_timeout', value)}"
+    if evaluator is None:
+        raise InputError(
+            f"task_timeout bounds a task of an environment stepped in Python on worker "
+            f"processes; {env!r} is stepped in C++, on threads (task_timeout=)"
+        )
+    if evaluator.in_process:
+        raise InputError(f"{evaluator.in_process_timeout_text()} (task_timeout=)")
+    return [setting]
 
 
 def evolve(
@@ -394,6 +411,7 @@ def evolve(
     time_budget: float | str | None = None,
     executor: Executor | None = None,
     native: bool | None = None,
+    task_timeout: float | str | None = None,
 ) -> Run:
     """Discovers features with GP, exactly as ``gpfd evolve`` does, and returns the run.
 
@@ -435,6 +453,17 @@ def evolve(
         (``learner.choose``, ``choose_random_sets``; docs/discovery.md), written to config.toml; a
         ``learner.params`` value in ``set`` (``learner.params.step``) drops the alternatives
         that set another.
+    task_timeout: seconds, or text such as ``"10m"`` (the config key ``task_timeout``, written
+        to config.toml): the longest one task of an environment stepped in Python (a lockstep
+        group's fitness evaluations, or learning runs) may take on a worker. Past it the worker
+        ends, and the task runs again as a lost worker's: gpfd's pool (``threads``) starts a new
+        worker and runs it again, up to 3 workers, then stops the run with gpfd.WorkerError naming
+        the environment and the step (the directory keeps its last complete generation, which
+        ``resume=`` continues); Dask and Ray run it again on a fresh worker; mpi4py's pool sends
+        it again to another rank (it cannot replace the rank); a ``ProcessPoolExecutor`` or loky
+        breaks as a whole (WorkerError). Refused (InputError) for gpfd's own environments and with
+        one thread and no executor: nothing could end this process' own hung step. A task is
+        retried with the same seeds, so a retried task gives the same result.
     callback: called after each generation (once its checkpoint is written) with its statistics
         (generation, best, mean, median, mean_size, mean_features, evaluations, cache_hits,
         seconds, best_features); a true return value stops the run there.
@@ -469,6 +498,8 @@ def evolve(
     if resume is not None:
         if seed is not None or population is not None or set is not None or time_budget is not None:
             raise TypeError("resume continues with the stored config; only generations may change")
+        if task_timeout is not None:
+            raise TypeError("resume continues with the stored config and its task_timeout")
         overrides: list[str] = []
         evaluator = _resumed_env(resume, env, env_kwargs)
         if evaluator is not None:
@@ -486,8 +517,9 @@ def evolve(
             overrides.append(f"gp.population={_whole('population', population, 1)}")
         overrides += _overrides(set)
         if time_budget is not None:
-            overrides.append(f"time_budget={_budget_value(time_budget)}")
+            overrides.append(f"time_budget={_duration_value('time_budget', time_budget)}")
     _use_workers(evaluator, threads, executor, env)
+    overrides += _task_timeout(task_timeout, evaluator, env)
     fingerprint = ""  # run.json's "env" of each run started: what a resume checks.
     if evaluator is not None and resume is None:
         given = evaluator.name if isinstance(env, str) else env
@@ -521,9 +553,10 @@ def evolve(
                 fingerprint,
             )
         except InputError as e:
-            if time_budget is None:
-                raise
-            raise _as_argument(e, "time_budget") from None
+            for key, given in (("time_budget", time_budget), ("task_timeout", task_timeout)):
+                if given is not None:
+                    e = _as_argument(e, key)
+            raise e from None
         finally:
             if evaluator is not None:
                 evaluator.close()
@@ -667,6 +700,7 @@ def assess(
     env_kwargs: dict[str, Any] | None = None,
     executor: Executor | None = None,
     native: bool | None = None,
+    task_timeout: float | str | None = None,
 ) -> Any:
     """The paper's test protocol, as ``gpfd assess`` runs it: each feature set (and the original
     state variables, the baseline, first) trained with the long budget over ``runs`` runs, with
@@ -680,6 +714,7 @@ def assess(
         processes, as gpfd.evolve does; its default config is ``user-env``, whose learner
         settings are chosen on the task as gpfd.evolve chooses them.
     executor: runs those runs on this executor's workers, as gpfd.evolve's ``executor``.
+    task_timeout: the longest one task of those runs may take on a worker, as gpfd.evolve's.
     params: ``k=v`` for the environment or the learner, like ``--param``.
 
     Example::
@@ -700,6 +735,7 @@ def assess(
             config = user_env.DEFAULT_CONFIG
     else:
         overrides = []  # gpfd's own environment: the request checks it against the config's.
+    overrides += _task_timeout(task_timeout, evaluator, env)
     sets = [
         f if isinstance(f, FeatureSet) else FeatureSet.load(os.fspath(f), env=env_name or None)
         for f in features
@@ -723,6 +759,8 @@ def assess(
             bool(force),
             evaluator,
         )
+    except InputError as e:
+        raise (e if task_timeout is None else _as_argument(e, "task_timeout")) from None
     finally:
         if evaluator is not None:
             evaluator.close()

@@ -23,7 +23,8 @@ from typing import Any
 
 import gymnasium as gym
 
-from gpfd import _jobs, vector_cache, vector_source
+from gpfd import _deadline, _jobs, vector_cache, vector_source
+from gpfd.errors import InputError
 from gpfd.workers import WorkerError, WorkerPool
 
 # Fitness evaluations played together in one vector environment (a lockstep group) where the
@@ -125,10 +126,25 @@ class Evaluator:
             curves for done in self._map(_jobs.runs_group, config_text, groups) for curves in done
         )
 
+    @property
+    def in_process(self) -> bool:
+        """Whether the work runs in this process (one worker and no executor)."""
+        return self._executor is None and self.workers == 1
+
+    def in_process_timeout_text(self) -> str:
+        return (
+            f"task_timeout needs worker processes: {self.name} is stepped in this process "
+            "(threads=1 and no executor), which nothing could end when a step hangs; give "
+            "threads=2 or more, or an executor"
+        )
+
     def _map(self, function: Callable[..., Any], config_text: str, work: list[tuple]) -> Iterator:
         """function(config_text, *args) for each args of work, in order, as each is done: here,
-        or on the executor under the jobs of gpfd._jobs."""
-        if self._executor is None and self.workers == 1:
+        or on the executor under the jobs of gpfd._jobs. InputError where the config sets a
+        task_timeout and the work would run here (nothing could end a hung step)."""
+        if self.in_process:
+            if _deadline.seconds_of(config_text) is not None:
+                raise InputError(f"{self.in_process_timeout_text()} (task_timeout)")
             return (function(config_text, *args) for args in work)
         executor = self._started()
         assert self._jobs is not None
@@ -138,6 +154,13 @@ class Evaluator:
         self._busy = True
         try:
             yield from results
+        except WorkerError as e:  # gpfd's pool: a task that lost its workers (or a timeout's).
+            if "resume=" in str(e):
+                raise
+            raise WorkerError(
+                f"{e}. The work stops; a discovery's directory keeps its last complete "
+                "generation, which resume= continues."
+            ) from e
         except BrokenExecutor as e:
             raise WorkerError(
                 f"the executor broke ({type(e).__name__}: {e}): one of its workers died and "

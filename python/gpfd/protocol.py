@@ -89,6 +89,10 @@ class AdapterProtocol(Protocol):
         finite. C++ calls it with an observation of gpfd's own engine that is not finite, to
         raise that error."""
 
+    def close(self) -> None:
+        """gpfd is done with this instance (its C++ environment is destroyed): closes the
+        environment, once. An error it raises is printed as unraisable, never thrown into C++."""
+
 
 @runtime_checkable
 class VectorAdapterProtocol(Protocol):

@@ -22,7 +22,7 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
-from gpfd import _core, registry, vector_cache, vector_source
+from gpfd import _core, _deadline, registry, vector_cache, vector_source
 from gpfd.errors import EnvError  # Also gpfd.user_env.EnvError, as before.
 from gpfd.registry import is_builtin  # Also gpfd.user_env.is_builtin, as before.
 
@@ -142,9 +142,27 @@ class Adapter:
         else:
             raise TypeError(f"{name}: gpfd drives Box or Discrete action spaces, not {space}")
         self._steps = 0  # The steps of the episode so far.
+        self._closed = False
+
+    def close(self) -> None:
+        """Closes the environment (``env.close()``), once: gpfd is done with this instance (its
+        C++ environment's destructor calls it). EnvError where the environment's close raises."""
+        if self._closed:
+            return
+        self._closed = True
+        try:
+            self.env.close()
+        except Exception as e:
+            raise EnvError(f"{self.name}: close() raised {type(e).__name__}: {e}") from e
+
+    def where(self) -> str:
+        """The call under way or last made, as an error names it (gpfd._deadline)."""
+        call = "reset" if self._steps == 0 else f"step {self._steps} of its episode, counted from 1"
+        return f"{self.name}: {call}"
 
     def reset(self, seed: int) -> np.ndarray:
         self._steps = 0
+        _deadline.current = self
         try:
             obs, _ = self.env.reset(seed=seed)
         except Exception as e:
@@ -159,6 +177,7 @@ class Adapter:
         else:
             act = action.reshape(self._shape).astype(self.action_dtype)
         self._steps += 1
+        _deadline.current = self
         try:
             obs, reward, terminated, truncated, _ = self.env.step(act)
         except Exception as e:

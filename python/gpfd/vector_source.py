@@ -41,7 +41,7 @@ from gymnasium import spaces
 from gymnasium.vector import AsyncVectorEnv, AutoresetMode, SyncVectorEnv, VectorEnv
 from gymnasium.wrappers import OrderEnforcing, PassiveEnvChecker
 
-from gpfd import _core, registry, vector_cache
+from gpfd import _core, _deadline, registry, vector_cache
 from gpfd.envs import GpfdEnv
 from gpfd.errors import EnvError
 from gpfd.planted import PlantedVectorEnv
@@ -333,6 +333,7 @@ class VectorAdapter:
         """Resets every sub-environment, those of lanes 0..len(seeds)-1 from their seeds (None:
         a sub-environment that plays no episode, in a lockstep group's layout); returns every
         sub-environment's observation as float64 (N, d)."""
+        _deadline.current = self
         lanes = len(seeds)
         given = [int(s) for s in seeds if s is not None]
         if self.envs is None or self.num_envs < lanes:
@@ -488,6 +489,11 @@ class VectorAdapter:
 
     def _error(self, message: str) -> Exception:
         return EnvError(f"{self.name}: {message}")
+
+    def where(self) -> str:
+        """What a lockstep group was doing, as gpfd._deadline names it: C++ steps the vector
+        form without a call here, so only the environment and its lanes are known."""
+        return f"{self.name}: a reset or a step of its vector form ({self.num_envs} lanes)"
 
     def _key(self, num_envs: int) -> tuple[str, VectorSource, int]:
         return (self.name, self.source, num_envs)

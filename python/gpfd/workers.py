@@ -12,8 +12,10 @@ again: a lost worker loses no task. A task that has lost ``attempts`` workers (3
 kills them) fails with WorkerError, naming the last worker and how it ended. A worker that cannot
 start or set up breaks the pool: every task not yet done fails with WorkerError, and so does
 every later submit. Workers run in a session of their own and ignore SIGINT: Ctrl-C reaches only
-this process, which ends them (``terminate``). gpfd.evaluator runs the discovery's work on such
-an executor.
+this process, which ends them (``terminate``); they die with this process, also when it is
+SIGKILLed in the middle of a task (gpfd._worker). A task that runs past its config's
+``task_timeout`` ends its worker (gpfd._deadline), which is then lost as above, the error naming
+where the task hung. gpfd.evaluator runs the discovery's work on such an executor.
 """
 
 from __future__ import annotations
@@ -84,11 +86,19 @@ class _Worker:
 
     def __init__(self, number: int) -> None:
         self.number = number
+        self.owner = threading.current_thread()  # The worker ends when this thread does.
         task_read, self.tasks = os.pipe()
         self.results, result_write = os.pipe()
         try:
             self.process = subprocess.Popen(
-                [sys.executable, "-m", "gpfd._worker", str(task_read), str(result_write)],
+                [
+                    sys.executable,
+                    "-m",
+                    "gpfd._worker",
+                    str(task_read),
+                    str(result_write),
+                    str(os.getpid()),
+                ],
                 pass_fds=(task_read, result_write),
                 stdin=subprocess.DEVNULL,
                 start_new_session=True,  # Ctrl-C at a terminal reaches this process only.
@@ -105,14 +115,18 @@ class _Worker:
         return f"gpfd worker {self.number} (pid {self.process.pid})"
 
     def call(self, payload: bytes) -> tuple:
-        """Sends one task and returns its reply; WorkerError when the worker ends first."""
+        """Sends one task and returns its reply; WorkerError when the worker ends first (also
+        past the task's deadline, gpfd._deadline: naming where the task was)."""
         try:
             _frames.send_bytes(self.tasks, payload)
-            return _frames.receive(self.results)
+            reply = _frames.receive(self.results)
         except (OSError, EOFError):
             raise WorkerError(
                 f"{self.name()} {_how_it_ended(self.process)} while running a task"
             ) from None
+        if reply[0] == "expired":
+            raise WorkerError(f"{self.name()} ended: {reply[1]}")
+        return reply
 
     def close(self) -> None:
         """Ends the task pipe (the worker exits when it next reads) and the result pipe."""
@@ -151,9 +165,8 @@ class WorkerPool(Executor):
         self._threads: list[threading.Thread] = []
         try:
             for number in range(workers):
-                worker = self._start_worker()
                 thread = threading.Thread(
-                    target=self._serve, args=(worker,), name=f"gpfd-worker-{number}", daemon=True
+                    target=self._serve, name=f"gpfd-worker-{number}", daemon=True
                 )
                 thread.start()
                 self._threads.append(thread)
@@ -167,12 +180,17 @@ class WorkerPool(Executor):
         return len(self._threads)
 
     def _start_worker(self) -> _Worker:
+        """A fresh worker, started by (and ending with) the calling thread of the pool."""
         with self._lock:
             number, self._started = self._started, self._started + 1
         worker = _Worker(number)
         with self._lock:
             self._workers.append(worker)
         return worker
+
+    def _workers_of(self, thread: threading.Thread) -> list[_Worker]:
+        with self._lock:
+            return [worker for worker in self._workers if worker.owner is thread]
 
     def submit(self, fn: Callable[..., Any], /, *args: Any, **kwargs: Any) -> Future:
         if kwargs:
@@ -203,8 +221,24 @@ class WorkerPool(Executor):
             return False
         return True
 
-    def _serve(self, worker: _Worker) -> None:
-        """A thread per worker: the setup, then the queue's tasks one at a time until a None."""
+    def _serve(self) -> None:
+        """A thread per worker: starts it (and its replacements), sets it up, then runs the
+        queue's tasks one at a time until a None; returns once its worker has exited. A worker
+        ends with the thread that started it (gpfd._worker's parent-death signal), so this thread
+        outlives it: the worker closes what it holds first."""
+        try:
+            worker = self._start_worker()
+        except BaseException as e:
+            self._break(WorkerError(f"a worker did not start: {type(e).__name__}: {e}"))
+            return
+        try:
+            self._serve_with(worker)
+        finally:
+            for started in self._workers_of(threading.current_thread()):
+                started.close()  # The worker exits as it next reads ...
+                started.process.wait()  # ... or was ended (terminate).
+
+    def _serve_with(self, worker: _Worker) -> None:
         if not self._set_up(worker):
             return
         while True:
@@ -304,10 +338,12 @@ class WorkerPool(Executor):
         ones fail with WorkerError. After an interruption or an error."""
         self._terminating = True
         self.shutdown(wait=False, cancel_futures=True)
-        for worker in self._workers:
+        with self._lock:
+            workers = list(self._workers)
+        for worker in workers:
             if worker.process.poll() is None:
                 worker.process.terminate()
-        for worker in self._workers:
+        for worker in workers:
             try:
                 worker.process.wait(timeout=5)
             except subprocess.TimeoutExpired:

@@ -367,7 +367,9 @@ nb::tuple evolve(const std::string& config, const std::vector<std::string>& over
 // vector form).
 std::vector<double> trialFitnessGroupOf(
     const std::string& configText, const std::vector<std::pair<nb::bytes, std::uint64_t>>& tasks) {
-  const run::LearningTask& task = cachedTask(configText, run::LearningTask::Budget::Trial);
+  // Kept while in use: an environment's step may register a name, which forgets cached tasks.
+  const auto owned = cachedTask(configText, run::LearningTask::Budget::Trial);
+  const run::LearningTask& task = *owned;
   std::vector<expr::Genome> genomes;
   std::vector<std::uint64_t> seeds;
   for (const auto& [genome, seed] : tasks) {

@@ -47,6 +47,11 @@ class PythonEnvironment final : public env::Environment {
   }
   ~PythonEnvironment() override {
     withPython([&] {
+      try {
+        adapter_.attr("close")();      // The Gymnasium environment's close(), once.
+      } catch (nb::python_error& e) {  // A destructor does not throw: printed, as Python does.
+        e.discard_as_unraisable("closing a Gymnasium environment stepped by gpfd");
+      }
       keepNative_.reset();
       action_.reset();
       adapter_.reset();

@@ -5,7 +5,9 @@
 #include <nanobind/stl/vector.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <stdexcept>
 
@@ -139,7 +141,7 @@ class PythonTrialRunner final : public run::TrialRunner {
   nb::object evaluator_;
 };
 
-const run::LearningTask& taskOf(const std::string& configText, int budget) {
+std::shared_ptr<const run::LearningTask> taskOf(const std::string& configText, int budget) {
   if (budget < 0 || budget > static_cast<int>(Budget::Assessment)) {
     throw std::invalid_argument(fmt::format("unknown budget {}", budget));
   }
@@ -164,7 +166,8 @@ nb::list curvesToPython(const std::vector<rl::LearningCurve>& curves) {
 // lockstep group (lockstep_group.hpp): the worker processes' task for validation, confirmation and
 // assessment (a group of one where there is no vector form); their curves as plain values.
 nb::list trainRunsGroup(const std::string& configText, int budget, const nb::list& tasks) {
-  const run::LearningTask& task = taskOf(configText, budget);
+  const auto owned = taskOf(configText, budget);  // Kept while in use: forgetCachedTasks may run.
+  const run::LearningTask& task = *owned;
   std::vector<run::TrialFeatures> sets;
   std::vector<std::vector<std::uint64_t>> seeds;
   for (nb::handle t : tasks) {
@@ -191,25 +194,47 @@ std::shared_ptr<run::TrialRunner> pythonTrialRunner(nb::object evaluator) {
 
 namespace {
 
-// The tasks of cachedTask, by config text and budget.
+// The tasks of cachedTask, by config text and budget, each with the count of the call that last
+// used it; at most kCachedTasks (the least recently used dropped first).
+constexpr std::size_t kCachedTasks = 16;
+struct CachedTask {
+  std::shared_ptr<const run::LearningTask> task;
+  std::uint64_t lastUse = 0;
+};
 std::mutex cacheMutex;
-std::map<std::pair<std::string, Budget>, std::unique_ptr<run::LearningTask>> cachedTasks;
+std::map<std::pair<std::string, Budget>, CachedTask> cachedTasks;
+std::uint64_t cacheUses = 0;
 
 }  // namespace
 
-const run::LearningTask& cachedTask(const std::string& configText, Budget budget) {
-  const std::lock_guard lock(cacheMutex);
-  auto& task = cachedTasks[{configText, budget}];
-  if (!task) {
-    task = std::make_unique<run::LearningTask>(run::parseExperimentConfig(configText, "config"),
-                                               budget);
+std::shared_ptr<const run::LearningTask> cachedTask(const std::string& configText, Budget budget) {
+  const std::pair key{configText, budget};
+  {
+    const std::lock_guard lock(cacheMutex);
+    if (auto found = cachedTasks.find(key); found != cachedTasks.end()) {
+      found->second.lastUse = ++cacheUses;
+      return found->second.task;
+    }
   }
-  return *task;
+  // Made without the lock: making it steps the environment (its sampled states), whose Python
+  // may register a name, which forgets the cached tasks (forgetCachedTasks).
+  auto task = std::make_shared<const run::LearningTask>(
+      run::parseExperimentConfig(configText, "config"), budget);
+  const std::lock_guard lock(cacheMutex);
+  auto& entry = cachedTasks[key];
+  if (!entry.task) entry.task = std::move(task);  // Else another thread's, made meanwhile.
+  entry.lastUse = ++cacheUses;
+  auto shared = entry.task;  // Copied before an eviction may drop `entry`.
+  if (cachedTasks.size() > kCachedTasks) {
+    cachedTasks.erase(std::ranges::min_element(cachedTasks, {},
+                                               [](const auto& kv) { return kv.second.lastUse; }));
+  }
+  return shared;
 }
 
 void forgetCachedTasks() {
   const std::lock_guard lock(cacheMutex);
-  cachedTasks.clear();
+  cachedTasks.clear();  // A task in use lives on in its users' shared_ptr.
 }
 
 void bindTrialRunner(nb::module_& m) {

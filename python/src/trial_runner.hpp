@@ -18,11 +18,15 @@ namespace gpfd::python {
 // order. Called without the GIL; takes it.
 std::shared_ptr<run::TrialRunner> pythonTrialRunner(nb::object evaluator);
 
-// One LearningTask per config text and budget, in this process (the workers' tasks).
-const run::LearningTask& cachedTask(const std::string& configText,
-                                    run::LearningTask::Budget budget);
-// Drops every cached task: an environment registered from Python under a name already used (a
-// second lambda: "python:<lambda>") makes its config texts mean another environment.
+// One LearningTask per config text and budget, in this process (the workers' tasks), made at its
+// first use and cached (the 16 most recently used). The caller shares ownership: hold the pointer
+// while using the task, which forgetCachedTasks (an environment's step may register a name) or
+// an eviction may drop from the cache meanwhile.
+std::shared_ptr<const run::LearningTask> cachedTask(const std::string& configText,
+                                                    run::LearningTask::Budget budget);
+// Drops every cached task (their users keep theirs): an environment registered from Python under
+// a name already used (a second lambda: "python:<lambda>") makes its config texts mean another
+// environment.
 void forgetCachedTasks();
 
 }  // namespace gpfd::python

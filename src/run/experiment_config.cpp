@@ -44,6 +44,7 @@ void visit(V& v, ExperimentConfig& c) {
   v.seed("", "seed", c.seed);
   v.texts("", "plugins", c.plugins);
   v.duration("", "time_budget", c.timeBudget);
+  v.duration("", "task_timeout", c.taskTimeout);
   v.text("env", "name", c.env);
   v.params("env.params", c.envParams);
   v.text("learner", "name", c.learner);

@@ -5,6 +5,8 @@ task fails naming the worker and how it ended."""
 
 import os
 import signal
+import subprocess
+import sys
 import threading
 import time
 
@@ -159,3 +161,78 @@ def test_a_factory_that_does_not_pickle_is_a_clear_error_with_workers(tmp_path):
     with pytest.raises(TypeError, match="cannot be sent to the worker processes.*threads=1"):
         gpfd.evolve(env=make, population=4, generations=1, threads=2, out=tmp_path / "r")
     assert not (tmp_path / "r").exists()
+
+
+def _gone(pid: int) -> bool:
+    """Whether process `pid` has ended (a zombie no init reaped counts as ended)."""
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            return f.read().rsplit(")", 1)[1].split()[0] == "Z"
+    except FileNotFoundError:
+        return True
+
+
+def _wait_until(condition, seconds: float = 120.0) -> bool:
+    end = time.monotonic() + seconds
+    while not condition():
+        if time.monotonic() > end:
+            return False
+        time.sleep(0.1)
+    return True
+
+
+HANGS_IN_STEP = """
+import os, sys, time
+import gpfd
+from point_env import Point
+
+class HangsInStep(Point):
+    def step(self, action):
+        if os.getpid() != PARENT:  # In a worker: note the pid, then hang in the step.
+            with open(os.path.join(LOG, str(os.getpid())), "w"):
+                pass
+            time.sleep(3600)
+        return super().step(action)
+
+PARENT, LOG = os.getpid(), sys.argv[1]
+gpfd.evolve(env=HangsInStep, seed=1, population=4, generations=1, threads=2,
+            set={"learner.params.updates": 1, "fitness.trials": 1}, out=sys.argv[2],
+            verbose=False)
+"""
+
+
+@pytest.mark.skipif(not os.path.isdir("/proc"), reason="reads /proc")
+def test_workers_die_with_their_parent_killed_in_the_middle_of_a_step(tmp_path):
+    log = tmp_path / "log"
+    log.mkdir()
+    here = os.path.dirname(os.path.abspath(__file__))
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([here, *sys.path])}
+    parent = subprocess.Popen(
+        [sys.executable, "-c", HANGS_IN_STEP, str(log), str(tmp_path / "run")], env=env
+    )
+    try:
+        assert _wait_until(lambda: len(list(log.iterdir())) == 2), "no worker reached a step"
+        workers = [int(p.name) for p in log.iterdir()]
+        assert not any(_gone(pid) for pid in workers)
+    finally:
+        parent.kill()  # SIGKILL: the parent closes nothing.
+        parent.wait()
+    assert _wait_until(lambda: all(_gone(pid) for pid in workers)), "a worker outlived its parent"
+
+
+def test_a_pool_made_in_a_thread_that_ended_keeps_its_workers():
+    """A worker ends with the thread that started it: the pool's own threads start them, never
+    the caller's (here one that has ended before the tasks come)."""
+    pools: list[WorkerPool] = []
+
+    def make() -> None:
+        pools.append(WorkerPool(2, _setup, (3,)))
+        list(pools[0].map(time.sleep, [0.5, 0.5]))  # Both workers up, each with a task.
+
+    maker = threading.Thread(target=make)
+    maker.start()
+    maker.join()
+    with pools[0] as pool:
+        results = list(pool.map(_work, range(4)))
+        assert [r[:2] for r in results] == [(0, 3), (1, 3), (4, 3), (9, 3)]
+        assert pool._started == 2  # No worker died and was replaced.

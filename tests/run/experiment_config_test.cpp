@@ -165,6 +165,23 @@ TEST(ExperimentConfig, ValidationMeasureScoresValidationTrialsOnly) {
   EXPECT_TRUE(has(refusal("", {"validation.measure=best"}), "validation.measure"));
 }
 
+// task_timeout: absent, none and no key written (configs keep their text); seconds or a duration
+// text, written as seconds among the root table's keys (where gpfd._deadline reads it) and read
+// back; zero, negative or malformed values refused naming the key.
+TEST(ExperimentConfig, TaskTimeoutIsSecondsWrittenOnlyWhereSet) {
+  const std::string path = GPFD_SOURCE_DIR "/configs/cartpole-quick.toml";
+  const auto plain = loadExperimentConfig(path);
+  EXPECT_EQ(plain.taskTimeout, 0.0);
+  EXPECT_FALSE(has(formatExperimentConfig(plain), "task_timeout"));
+  const std::string text = formatExperimentConfig(loadExperimentConfig(path, {"task_timeout=2m"}));
+  EXPECT_TRUE(has(text, "\ntask_timeout = 120")) << text;
+  EXPECT_LT(text.find("task_timeout"), text.find("\n["));
+  EXPECT_EQ(parseExperimentConfig(text, "c.toml").taskTimeout, 120.0);
+  for (const char* bad : {"task_timeout=0", "task_timeout=-1", "task_timeout='abc'"}) {
+    EXPECT_TRUE(has(refusal("", {bad}), "task_timeout")) << bad << ": " << refusal("", {bad});
+  }
+}
+
 // The bug as reported: `evolve --seed` refused the seeds `evolve --runs` prints.
 TEST(ExperimentConfig, RejectingConstantGenomesNeedsDistinctOffspring) {
   const std::string path = GPFD_SOURCE_DIR "/configs/cartpole-quick.toml";

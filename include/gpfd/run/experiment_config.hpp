@@ -34,6 +34,12 @@ struct ExperimentConfig {
   // no budget, so that a resume, or the resolved config run again, gives the same run.
   double timeBudget = 0.0;
 
+  // Seconds one task of an environment stepped in Python (a lockstep group's fitness
+  // evaluations, or learning runs) may take on a worker process (`task_timeout`: seconds, or text
+  // such as "10m"); 0: none. Past it the worker ends and its task runs again as a lost worker's
+  // (gpfd._deadline). Read by the Python workers only; it never changes a result.
+  double taskTimeout = 0.0;
+
   std::string env = "cartpole";
   std::map<std::string, std::string> envParams;
 

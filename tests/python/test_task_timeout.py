@@ -1,0 +1,196 @@
+"""A hung environment does not hang the run (task_timeout, gpfd._deadline): past the deadline a
+task's worker ends and the task runs again as a lost worker's, giving the same run; a task that
+outlasts it on every try stops the run with WorkerError naming the environment and the step, and
+the directory resumes to the same run. Bad values, gpfd's own environments and work in this
+process are InputErrors."""
+
+import os
+import subprocess
+import sys
+import textwrap
+import time
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+import gpfd
+from gpfd import _deadline
+from gpfd.workers import WorkerError
+from point_env import Point
+from test_executors import process_pool
+from test_user_env_workers import SMALL, run_files
+
+TIMEOUT = 10  # Seconds: a task of these runs takes milliseconds, also on a loaded machine.
+COMMON: dict[str, Any] = {"seed": 5, "population": 6, "generations": 3, "set": SMALL}
+
+
+class Hangs(Point):
+    """Point whose step hangs (sleeps an hour) in a process other than `parent` once
+    `directory`/armed exists: in every such process, or with `once` in the first only."""
+
+    def __init__(self, directory: str, parent: int, once: bool):
+        super().__init__(steps=30)
+        self.directory, self.parent, self.once = Path(directory), parent, once
+
+    def step(self, action):
+        if os.getpid() != self.parent and (self.directory / "armed").exists():
+            try:
+                os.close(os.open(self.directory / "hung", os.O_CREAT | os.O_EXCL | os.O_WRONLY))
+                first = True
+            except FileExistsError:
+                first = False
+            if first or not self.once:
+                time.sleep(3600)
+        return super().step(action)
+
+
+def evolve(tmp_path: Path, name: str, once: bool, arm: bool, **options: Any) -> gpfd.Run:
+    """A run on Hangs, armed after generation 0 where `arm`."""
+    directory = tmp_path / f"{name}-flags"
+    directory.mkdir(exist_ok=True)
+
+    def callback(stats: dict) -> None:
+        if arm and stats["generation"] == 0:
+            (directory / "armed").touch()
+
+    return gpfd.evolve(
+        env=Hangs,
+        env_kwargs={"directory": str(directory), "parent": os.getpid(), "once": once},
+        **options,
+        callback=callback,
+        out=tmp_path / name,
+        verbose=False,
+    )
+
+
+@pytest.fixture(scope="module")
+def reference(tmp_path_factory) -> dict[str, str]:
+    """The run on gpfd's pool with the deadline, nothing hung."""
+    tmp = tmp_path_factory.mktemp("ref")
+    run = evolve(tmp, "ref", once=True, arm=False, **COMMON, threads=2, task_timeout=TIMEOUT)
+    assert run.config["task_timeout"] == TIMEOUT
+    return run_files(run.dir)
+
+
+def test_a_task_hung_once_runs_again_on_a_new_worker_of_gpfds_pool(tmp_path, reference):
+    run = evolve(tmp_path, "pool", once=True, arm=True, **COMMON, threads=2, task_timeout=TIMEOUT)
+    assert (tmp_path / "pool-flags/hung").exists()
+    assert run.finished and run_files(run.dir) == reference
+
+
+def test_a_task_hung_once_runs_again_on_dask(tmp_path, reference, dask_client):
+    executor = dask_client.get_executor()
+    run = evolve(
+        tmp_path, "dask", once=True, arm=True, **COMMON, executor=executor, task_timeout=TIMEOUT
+    )
+    assert (tmp_path / "dask-flags/hung").exists()
+    assert run_files(run.dir) == reference
+
+
+def test_the_deadline_from_the_config_key_is_the_same(tmp_path, reference):
+    common = {**COMMON, "set": {**SMALL, "task_timeout": TIMEOUT}}
+    run = evolve(tmp_path, "key", once=True, arm=True, **common, threads=2)
+    assert (tmp_path / "key-flags/hung").exists()
+    assert run_files(run.dir) == reference
+
+
+def test_a_task_hung_on_every_worker_stops_naming_the_step_and_resumes(tmp_path, reference):
+    with pytest.raises(WorkerError) as caught:
+        evolve(tmp_path, "run", once=False, arm=True, **COMMON, threads=2, task_timeout=TIMEOUT)
+    text = str(caught.value)
+    assert f"task_timeout={TIMEOUT} s in python:Hangs: step " in text, text
+    assert "of its episode" in text and "the task has lost 3 workers" in text, text
+    assert "resume= continues" in text, text
+    (tmp_path / "run-flags/armed").unlink()  # The environment mended: the run resumes.
+    run = gpfd.evolve(
+        resume=tmp_path / "run",
+        env=Hangs,
+        env_kwargs={"directory": str(tmp_path / "run-flags"), "parent": os.getpid(), "once": False},
+        threads=2,
+        verbose=False,
+    )
+    assert run.finished and run_files(run.dir) == reference
+
+
+def test_a_process_pool_breaks_with_a_clear_error(tmp_path):
+    with process_pool(2) as executor, pytest.raises(WorkerError, match="executor broke"):
+        evolve(
+            tmp_path, "pp", once=True, arm=True, **COMMON, executor=executor, task_timeout=TIMEOUT
+        )
+    assert (tmp_path / "pp-flags/hung").exists()
+
+
+@pytest.mark.parametrize(
+    "value, message",
+    [
+        (-1, r"task_timeout must be in \[0, "),
+        (0, "task_timeout must be above 0"),
+        ("abc", "abc"),
+        (True, "task_timeout must be seconds"),
+        (float("nan"), "task_timeout must be seconds"),
+    ],
+)
+def test_a_bad_value_is_an_input_error_naming_the_argument(tmp_path, value, message):
+    with pytest.raises(gpfd.InputError, match=message) as caught:
+        evolve(tmp_path, "bad", once=True, arm=False, **COMMON, threads=2, task_timeout=value)
+    assert str(caught.value).endswith("(task_timeout=)"), str(caught.value)
+    assert not (tmp_path / "bad").exists()
+
+
+def test_a_bad_config_key_is_an_input_error_naming_the_key(tmp_path):
+    common = {**COMMON, "set": {**SMALL, "task_timeout": -2}}
+    with pytest.raises(gpfd.InputError, match=r"task_timeout must be in \[0, .*--set task_timeout"):
+        evolve(tmp_path, "bad", once=True, arm=False, **common, threads=2)
+
+
+def test_no_deadline_where_nothing_could_end_a_hung_step(tmp_path):
+    with pytest.raises(gpfd.InputError, match=r"threads=1 and no executor.*\(task_timeout=\)"):
+        evolve(tmp_path, "one", once=True, arm=False, **COMMON, threads=1, task_timeout=5)
+    with pytest.raises(gpfd.InputError, match=r"stepped in C\+\+.*\(task_timeout=\)"):
+        gpfd.evolve(env="acrobot", **COMMON, task_timeout=5, out=tmp_path / "c", verbose=False)
+    with pytest.raises(gpfd.InputError, match=r"threads=1 and no executor"):  # The config key.
+        common = {**COMMON, "set": {**SMALL, "task_timeout": 5}}
+        evolve(tmp_path, "key", once=True, arm=False, **common, threads=1)
+
+
+def test_seconds_of_reads_the_root_key_only():
+    assert _deadline.seconds_of('name = "x"\ntask_timeout = 2.5\n[gp]\npopulation = 4\n') == 2.5
+    assert _deadline.seconds_of('name = "x"\n[gp]\ntask_timeout = 3\n') is None
+    assert _deadline.seconds_of("") is None
+
+
+def run_guarded(body: str, grace: float) -> subprocess.CompletedProcess:
+    script = textwrap.dedent(
+        f"""
+        import re, time
+        from gpfd import _deadline
+        _deadline.GRACE = {grace}
+        with _deadline.guard(1.0):
+            {body}
+        print("finished")
+        """
+    )
+    return subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, timeout=300
+    )
+
+
+def test_the_guard_ends_a_process_past_its_deadline_saying_where():
+    done = run_guarded("time.sleep(600)", grace=5.0)
+    assert done.returncode == _deadline.EXIT_CODE, done.stderr
+    assert "task_timeout=1 s in no environment call" in done.stderr
+    assert "finished" not in done.stdout
+
+
+def test_a_hang_that_holds_the_gil_is_ended_by_faulthandler():
+    """A regular expression's backtracking holds the GIL, as native code may: the watching
+    thread cannot run; faulthandler ends the process GRACE seconds later, with tracebacks."""
+    done = run_guarded('re.match(r"(a+)+b", "a" * 64)', grace=1.0)
+    assert done.returncode == 1 and "Timeout" in done.stderr, done.stderr
+    assert "finished" not in done.stdout
+
+
+def test_a_task_within_its_deadline_is_untouched():
+    done = run_guarded("time.sleep(0.1)", grace=1.0)
+    assert done.returncode == 0 and done.stdout.strip() == "finished", done.stderr
