@@ -389,8 +389,16 @@ def evolve(
     time_budget: float | str | None = None,
     executor: Executor | None = None,
     native: bool | None = None,
+    replay: str | os.PathLike | None = None,
 ) -> Run:
     """Discovers features with GP, exactly as ``gpfd evolve`` does, and returns the run.
+
+    The same seed and sizes give the same run, whatever ``threads`` or ``executor``. A time
+    budget (``time_budget``, and ``user-env``'s default of 3 minutes) sizes the run from the
+    clock: the population and validation from measured speed, the generations fitted to the
+    deadline, the learner's settings chosen on the task; two calls with the same seed may then
+    differ. Such a run says so (printed, and run.json's ``"sizes"``), and ``replay=`` reruns it
+    exactly.
 
     config: a TOML file or a shipped config name (default ``cartpole-quick``; ``user-env`` for an
         environment stepped in Python).
@@ -409,7 +417,7 @@ def evolve(
         run) and a verdict on the method over them, like ``gpfd evolve --runs N`` (runs.csv);
         the Run returned is their directory's.
     threads: worker threads (processes for a Python environment); 0: all cores. Never changes
-        the results.
+        the results of given sizes (a time budget's sizes come from the clock: see ``replay``).
     executor: a ``concurrent.futures.Executor`` (a Dask client's ``get_executor()``, mpi4py's
         ``MPIPoolExecutor``, loky, ``ProcessPoolExecutor``) whose workers step an environment
         stepped in Python instead of gpfd's own worker processes; ``threads`` then only says how
@@ -455,14 +463,22 @@ def evolve(
         generations = _whole("generations", generations, 0)
     env = _twin_or_gymnasium(env, env_kwargs, native, executor, say=verbose is not False)
     out_name = ""
-    if resume is not None:
+    if replay is not None:
+        given_sizes = (seed, population, set, time_budget, generations, runs, resume)
+        if any(value is not None for value in given_sizes):
+            raise TypeError(
+                "replay runs the stored config and sizes again; only threads, executor, out, "
+                "force, env and env_kwargs may be given"
+            )
+    stored_run = resume if resume is not None else replay
+    if stored_run is not None:
         if seed is not None or population is not None or set is not None or time_budget is not None:
             raise TypeError("resume continues with the stored config; only generations may change")
         overrides: list[str] = []
-        evaluator = _resumed_env(resume, env, env_kwargs)
+        evaluator = _resumed_env(stored_run, env, env_kwargs)
         if evaluator is not None:
             given = evaluator.name if env is None or isinstance(env, str) else env
-            _check_resumed_task(resume, _task_fingerprint(given, env_kwargs, evaluator))
+            _check_resumed_task(stored_run, _task_fingerprint(given, env_kwargs, evaluator))
     else:
         overrides, evaluator = _env_overrides(env, env_kwargs)
         if evaluator is not None or env in twins.TWINS:
@@ -478,7 +494,7 @@ def evolve(
             overrides.append(f"time_budget={_budget_value(time_budget)}")
     _use_workers(evaluator, threads, executor, env)
     fingerprint = ""  # run.json's "env" of each run started: what a resume checks.
-    if evaluator is not None and resume is None:
+    if evaluator is not None and stored_run is None:
         given = evaluator.name if isinstance(env, str) else env
         fingerprint = json.dumps(_task_fingerprint(given, env_kwargs, evaluator))
 
@@ -508,6 +524,7 @@ def evolve(
                 _resume_call(env, env_kwargs),
                 lambda: watch.seen,
                 fingerprint,
+                "" if replay is None else os.fspath(replay),
             )
         except InputError as e:
             if time_budget is None:
