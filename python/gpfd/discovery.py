@@ -1,8 +1,9 @@
 """Discovery (``gpfd evolve``), GP's fitness, assessment (``gpfd assess``) and results directories.
 
 ``evolve`` and ``assess`` call the same C++ code as the command line, with the same config loading
-(a TOML file or a shipped config name, ``key=value`` overrides): the same seed gives the same
-``best.features`` from Python as from ``gpfd evolve``, whatever the number of threads.
+(a TOML file or a shipped config name, ``key=value`` overrides): the same seed and sizes give the
+same ``best.features`` from Python as from ``gpfd evolve``, whatever the number of threads; a time
+budget's sizes come from the clock, and ``evolve(replay=...)`` reruns such a run exactly.
 """
 
 from __future__ import annotations
@@ -422,7 +423,7 @@ def evolve(
         ``MPIPoolExecutor``, loky, ``ProcessPoolExecutor``) whose workers step an environment
         stepped in Python instead of gpfd's own worker processes; ``threads`` then only says how
         many workers to size the work for (0: the executor's own count). Never shut down by
-        gpfd; never changes the results.
+        gpfd; never changes the results of given sizes (see ``replay``).
     out: the results directory (default ``results/<name>``, or ``results/<name>-N`` when taken:
         the config's name, or for an environment stepped in Python the environment's);
         one that already holds files needs ``force=True``, one that holds a run is resumed with

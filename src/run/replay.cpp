@@ -39,11 +39,13 @@ ReplaySource readFinishedRun(const std::string& dir, const std::string& version)
   const bool validated = source.config.validation.candidates == 0 ||
                          checkpoint.validation.finalGeneration == checkpoint.state.generation;
   if (made < source.config.gp.generations || !validated) {
-    throw InputError(
-        "not a finished run (generation " + std::to_string(checkpoint.state.generation) + " of " +
-            std::to_string(source.config.gp.generations) + (validated ? "" : ", not validated") +
-            "): finish it with --resume (gpfd.evolve(resume=...)) first",
-        where);
+    const std::string stopped = made < source.config.gp.generations
+                                    ? "generation " + std::to_string(checkpoint.state.generation) +
+                                          " of " + std::to_string(source.config.gp.generations)
+                                    : "its validation not done";
+    throw InputError("not a finished run (" + stopped +
+                         "): finish it with --resume (gpfd.evolve(resume=...)) first",
+                     where);
   }
   // A run extended on resume (--generations) made more than its stored config says.
   source.config.gp.generations = made;
