@@ -8,9 +8,10 @@ stops a run is always said, on stderr.
 The bar follows the C++ run through gpfd._core.evolve's ``observer``: ``phase`` as each stage
 before a run begins (choosing the learner's settings, measuring what an evaluation costs),
 ``run_started`` and ``run_ended`` around each run, ``poll`` every half second from a thread of
-the run (the running stage: ``generations`` with the evaluations of the running generation, then ``validation`` and
-``confirmation`` with their trainings), and ``generation`` after each generation (its
-statistics, as the callback sees them).
+the run (the running stage: ``generations`` with the evaluations of the running generation and
+the run's generations as its deadline refits them, then ``validation`` and ``confirmation`` with
+their trainings), and ``generation`` after each generation (its statistics, as the callback sees
+them).
 """
 
 from __future__ import annotations

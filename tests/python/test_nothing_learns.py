@@ -24,10 +24,26 @@ def test_a_task_that_learns_goes_on_and_records_no_learning(cli, tmp_path):
     out = tmp_path / "run"
     settings = ["--set=learner.choose_seeds=3", "--set=learner.choose_random_sets=2"]
     subprocess.run(
-        [cli, "evolve", "user-env", "--env", "CartPole-v1", "--population", "8",
-         "--generations", "1", "--set=learner.params.updates=3", "--threads", "2",
-         "--out", str(out), *settings],
-        check=True, capture_output=True, text=True,
+        [
+            cli,
+            "evolve",
+            "user-env",
+            "--env",
+            "CartPole-v1",
+            "--population",
+            "8",
+            "--generations",
+            "1",
+            "--set=learner.params.updates=3",
+            "--threads",
+            "2",
+            "--out",
+            str(out),
+            *settings,
+        ],
+        check=True,
+        capture_output=True,
+        text=True,
     )
     choice = json.loads((out / "run.json").read_text())["learner_choice"]
     assert choice["nothing_learns"] is False
@@ -38,7 +54,9 @@ def test_a_task_that_learns_goes_on_and_records_no_learning(cli, tmp_path):
 def test_the_command_line_refuses_with_exit_code_2(cli, tmp_path):
     refused = subprocess.run(
         [cli, "evolve", "user-env", "--env", "MountainCar-v0", "--out", str(tmp_path / "run")],
-        capture_output=True, text=True, check=False,
+        capture_output=True,
+        text=True,
+        check=False,
     )
     assert refused.returncode == 2
     assert refused.stderr.startswith("error: nothing learns here")

@@ -76,7 +76,16 @@ def test_a_budgeted_user_env_run_replays_on_one_thread(cli, tmp_path):
     assert f"population = {run['sizes']['population']}\n" in config
     assert "choose" not in config  # The learner's settings as chosen.
     again = subprocess.run(
-        [cli, "evolve", "--replay", str(tmp_path / "run"), "--threads", "1", "--out", str(tmp_path / "again")],
+        [
+            cli,
+            "evolve",
+            "--replay",
+            str(tmp_path / "run"),
+            "--threads",
+            "1",
+            "--out",
+            str(tmp_path / "again"),
+        ],
         capture_output=True,
         text=True,
         check=True,
@@ -107,14 +116,26 @@ def test_a_run_stopped_by_its_deadline_replays_on_other_workers(tmp_path):
     stored = json.loads((tmp_path / "run/run.json").read_text())
     assert stored["sizes"]["generations"] < stored["time_budget"]["chosen"]["generations"]
     replayed = gpfd.evolve(
-        replay=tmp_path / "run", env=Point, env_kwargs={"steps": 30}, threads=1, out=tmp_path / "again", verbose=False
+        replay=tmp_path / "run",
+        env=Point,
+        env_kwargs={"steps": 30},
+        threads=1,
+        out=tmp_path / "again",
+        verbose=False,
     )
     assert replayed.finished
     assert_same_run(tmp_path / "run", tmp_path / "again")
 
 
 def test_an_unbudgeted_run_has_no_sizes_from_the_clock(tmp_path):
-    gpfd.evolve(seed=2, population=8, generations=2, set={"learner.params.updates": 5}, out=tmp_path / "run", verbose=False)
+    gpfd.evolve(
+        seed=2,
+        population=8,
+        generations=2,
+        set={"learner.params.updates": 5},
+        out=tmp_path / "run",
+        verbose=False,
+    )
     assert "sizes" not in json.loads((tmp_path / "run/run.json").read_text())
 
 
@@ -125,30 +146,59 @@ def test_a_replay_of_no_finished_run_is_refused(cli, tmp_path):
     with pytest.raises(gpfd.InputError, match=r"not a run's results directory"):
         gpfd.evolve(replay=tmp_path / "empty")
     gpfd.evolve(
-        seed=2, population=8, generations=3, set={"learner.params.updates": 5}, out=tmp_path / "stopped",
-        callback=lambda stats: True, verbose=False,
+        seed=2,
+        population=8,
+        generations=3,
+        set={"learner.params.updates": 5},
+        out=tmp_path / "stopped",
+        callback=lambda stats: True,
+        verbose=False,
     )
-    with pytest.raises(gpfd.InputError, match=r"not a finished run \(generation 0 of 3\).*--resume"):
+    with pytest.raises(
+        gpfd.InputError, match=r"not a finished run \(generation 0 of 3\).*--resume"
+    ):
         gpfd.evolve(replay=tmp_path / "stopped")
     assert not (tmp_path / "stopped-replay").exists()
-    gpfd.evolve(seed=2, population=8, generations=1, runs=2, set={"learner.params.updates": 5}, out=tmp_path / "set", verbose=False)
+    gpfd.evolve(
+        seed=2,
+        population=8,
+        generations=1,
+        runs=2,
+        set={"learner.params.updates": 5},
+        out=tmp_path / "set",
+        verbose=False,
+    )
     with pytest.raises(gpfd.InputError, match=r"a set of runs: replay each of its runs"):
         gpfd.evolve(replay=tmp_path / "set")
     with pytest.raises(TypeError, match="replay runs the stored config"):
         gpfd.evolve(replay=tmp_path / "set/run-01", seed=3)
     refused = subprocess.run(
-        [cli, "evolve", "--replay", str(tmp_path / "missing")], capture_output=True, text=True, check=False
+        [cli, "evolve", "--replay", str(tmp_path / "missing")],
+        capture_output=True,
+        text=True,
+        check=False,
     )
     assert refused.returncode == 2
     assert refused.stderr.startswith("error: no such results directory (replay ")
     refused = subprocess.run(
-        [cli, "evolve", "--replay", str(tmp_path / "set/run-01"), "--seed", "4"], capture_output=True, text=True, check=False
+        [cli, "evolve", "--replay", str(tmp_path / "set/run-01"), "--seed", "4"],
+        capture_output=True,
+        text=True,
+        check=False,
     )
     assert refused.returncode == 2 and "only the threads" in refused.stderr
 
 
 def test_a_set_s_run_replays(tmp_path):
     """Each run of a set is a finished run of its own."""
-    gpfd.evolve(seed=2, population=8, generations=2, runs=2, set={"learner.params.updates": 5}, out=tmp_path / "set", verbose=False)
+    gpfd.evolve(
+        seed=2,
+        population=8,
+        generations=2,
+        runs=2,
+        set={"learner.params.updates": 5},
+        out=tmp_path / "set",
+        verbose=False,
+    )
     gpfd.evolve(replay=tmp_path / "set/run-02", threads=1, out=tmp_path / "again", verbose=False)
     assert_same_run(tmp_path / "set/run-02", tmp_path / "again")
