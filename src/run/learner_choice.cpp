@@ -139,7 +139,7 @@ std::vector<std::map<std::string, std::string>> learnerCandidates(const Experime
 }
 
 LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner& runner,
-                                    double allowance) {
+                                    double allowance, int workers) {
   const auto start = std::chrono::steady_clock::now();
   const auto elapsed = [&start] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -148,16 +148,26 @@ LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner&
   choice.candidates = learnerCandidates(config);
   choice.seeds = config.choiceSeeds;
   choice.randomSets = config.choiceRandomSets;
-  // The original variables and, on the same seeds, the no-learning reference (whose curves
-  // leave the original variables' as they are).
   std::vector<std::uint64_t> seeds;
   for (int i = 0; i < config.choiceSeeds; ++i) {
     seeds.push_back(deriveSeed(config.seed, kChoiceStream, static_cast<std::uint64_t>(i)));
   }
-  const TrialBatch batch{{TrialFeatures::original(), TrialFeatures::noLearning()}, {seeds, seeds}};
   choice.confirmation = config.validation.confirms();
   const auto budget =
       choice.confirmation ? LearningTask::Budget::Confirmation : LearningTask::Budget::Validation;
+  // The original variables on the seeds from `from` on and, on every seed, the no-learning
+  // reference (a curve depends on its features, budget and seed only: batches split anyhow
+  // train the same curves).
+  const auto trainPairs = [&](const LearningTask& task, std::size_t from) {
+    const TrialFeatures original = TrialFeatures::original(), none = TrialFeatures::noLearning();
+    if (from == 0) return runner.run(task, {{original, none}, {seeds, seeds}}, {});
+    // A batch's sets share their seeds' count: the two apart.
+    const std::vector<std::uint64_t> rest(seeds.begin() + static_cast<std::ptrdiff_t>(from),
+                                          seeds.end());
+    auto curves = runner.run(task, {{original}, {rest}}, {});
+    curves.push_back(runner.run(task, {{none}, {seeds}}, {})[0]);
+    return curves;
+  };
   std::vector<expr::Genome> genomes;
   bool withRandomSets = config.choiceRandomSets > 0;
   for (std::size_t c = 0; c < choice.candidates.size(); ++c) {
@@ -166,33 +176,42 @@ LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner&
     trained.learnerAlternatives.clear();
     for (const auto& [key, value] : choice.candidates[c]) trained.learnerParams[key] = value;
     const LearningTask task(trained, budget);
-    const auto curves = runner.run(task, batch, {});
-    choice.scores.push_back(task.scores(curves[0]));
-    choice.means.push_back(meanOrWorst(choice.scores.back()));
-    choice.noLearningMeans.push_back(meanOrWorst(task.scores(curves[1])));
-    choice.merits.push_back(choice.means.back());
+    std::vector<double> scores;
     if (c == 0) {
-      // The first candidate's trainings, timed, size the rest: all of it where it fits the
-      // allowance, else without the random sets, else the first candidate alone.
+      // One training, timed, sizes the rest: all of it where it fits the allowance, else
+      // without the random sets, else the first candidate alone, else none but this one.
+      scores = task.scores(runner.run(task, {{TrialFeatures::original()}, {{seeds[0]}}}, {})[0]);
       choice.firstSeconds = elapsed();
+      const double each = choice.firstSeconds / std::max(1, workers);
       const double pairs = 2.0 * config.choiceSeeds;
-      const double perCandidate = choice.firstSeconds;
-      const double randomShare = kRandomSetSeeds * config.choiceRandomSets / pairs;
+      const double random = withRandomSets ? kRandomSetSeeds * config.choiceRandomSets : 0.0;
       const auto candidates = static_cast<double>(choice.candidates.size());
-      if (withRandomSets && perCandidate * (1.0 + randomShare) * candidates > allowance) {
+      choice.predictedSeconds = each * (pairs + random) * candidates;
+      if (each * pairs > allowance && (candidates > 1 || withRandomSets || pairs > 2)) {
+        choice.cut = LearnerChoice::Cut::All;
+        choice.candidates.resize(1);
+        choice.scores.push_back(scores);
+        choice.means.push_back(meanOrWorst(scores));
+        choice.noLearningMeans.push_back(kWorst);
+        choice.merits.push_back(choice.means.back());
+        break;
+      }
+      if (choice.predictedSeconds > allowance && withRandomSets) {
         withRandomSets = false;
         choice.cut = LearnerChoice::Cut::RandomSets;
       }
-      if (perCandidate * candidates > allowance && candidates > 1) {
+      if (each * pairs * candidates > allowance && candidates > 1) {
         choice.cut = LearnerChoice::Cut::Candidates;
-        choice.predictedSeconds = perCandidate * (1.0 + randomShare) * candidates;
         choice.candidates.resize(1);
-        break;
-      }
-      if (choice.cut != LearnerChoice::Cut::None) {
-        choice.predictedSeconds = perCandidate * (1.0 + randomShare) * candidates;
       }
     }
+    const auto curves = trainPairs(task, scores.size());
+    const auto more = task.scores(curves[0]);
+    scores.insert(scores.end(), more.begin(), more.end());
+    choice.scores.push_back(scores);
+    choice.means.push_back(meanOrWorst(scores));
+    choice.noLearningMeans.push_back(meanOrWorst(task.scores(curves[1])));
+    choice.merits.push_back(choice.means.back());
     if (withRandomSets) {
       if (genomes.empty()) genomes = randomSets(config, task);
       choice.randomSetsBest.push_back(bestQuarterOfRandomSets(task, genomes, runner));
@@ -233,11 +252,18 @@ std::string learnerChoiceText(const LearnerChoice& choice) {
         "; without the random sets: trying them too would take about {:.0f} s, more than the "
         "time budget's share for the choice",
         choice.predictedSeconds);
+  } else if (choice.cut == LearnerChoice::Cut::All) {
+    cut = fmt::format(
+        "; NOT chosen: the first alternative kept after one training of the original variables "
+        "({:.2g} s), since trying them would take about {:.0f} s, more than the time budget's "
+        "share for the choice, and nothing learning not checked; give a longer budget, or the "
+        "settings (learner.params)",
+        choice.firstSeconds, choice.predictedSeconds);
   } else if (choice.cut == LearnerChoice::Cut::Candidates) {
     cut = fmt::format(
         "; NOT chosen: the first alternative kept, untried against the others, since trying them "
         "would take about {:.0f} s, more than the time budget's share for the choice (its first "
-        "trainings took {:.2g} s); give a longer budget, or the settings (learner.params)",
+        "training took {:.2g} s); give a longer budget, or the settings (learner.params)",
         choice.predictedSeconds, choice.firstSeconds);
   }
   return fmt::format(
@@ -273,6 +299,7 @@ std::string learnerChoiceJson(const LearnerChoice& choice) {
   // Only where the time budget cut the choice, so that a whole choice keeps its bytes.
   if (choice.cut == LearnerChoice::Cut::RandomSets) json["cut"] = "random sets";
   if (choice.cut == LearnerChoice::Cut::Candidates) json["cut"] = "candidates";
+  if (choice.cut == LearnerChoice::Cut::All) json["cut"] = "all";
   return json.dump();
 }
 

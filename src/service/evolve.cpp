@@ -135,7 +135,7 @@ run::ExperimentConfig chooseLearner(const run::ExperimentConfig& config,
           : std::string(),
       config.timeBudget > 0.0 ? fmt::format(", within {:.0f} s of the budget", allowance)
                               : std::string()));
-  const auto choice = run::chooseLearnerSettings(config, runner, allowance);
+  const auto choice = run::chooseLearnerSettings(config, runner, allowance, options.threads);
   progress.preparedRun(run::learnerChoiceText(choice));
   if (choice.nothingLearns) {
     throw InputError(run::nothingLearnsText(choice), "learner.choose (" + config.env + ")");

@@ -29,6 +29,19 @@ SMALL = {
 }
 
 
+def given_sizes_run(out, generations, **more):
+    """A run of cartpole-quick of given sizes (nothing from the clock)."""
+    return gpfd.evolve(
+        seed=2,
+        population=8,
+        generations=generations,
+        set={"learner.params.updates": 5},
+        out=out,
+        verbose=False,
+        **more,
+    )
+
+
 def files_but_timings(directory: Path) -> dict[str, str]:
     """Every file of a run as scripts/compare-outputs compares them (timings out), run.json
     without the threads and the run it replays."""
@@ -128,14 +141,7 @@ def test_a_run_stopped_by_its_deadline_replays_on_other_workers(tmp_path):
 
 
 def test_an_unbudgeted_run_has_no_sizes_from_the_clock(tmp_path):
-    gpfd.evolve(
-        seed=2,
-        population=8,
-        generations=2,
-        set={"learner.params.updates": 5},
-        out=tmp_path / "run",
-        verbose=False,
-    )
+    given_sizes_run(tmp_path / "run", 2)
     assert "sizes" not in json.loads((tmp_path / "run/run.json").read_text())
 
 
@@ -145,29 +151,13 @@ def test_a_replay_of_no_finished_run_is_refused(cli, tmp_path):
     (tmp_path / "empty").mkdir()
     with pytest.raises(gpfd.InputError, match=r"not a run's results directory"):
         gpfd.evolve(replay=tmp_path / "empty")
-    gpfd.evolve(
-        seed=2,
-        population=8,
-        generations=3,
-        set={"learner.params.updates": 5},
-        out=tmp_path / "stopped",
-        callback=lambda stats: True,
-        verbose=False,
-    )
+    given_sizes_run(tmp_path / "stopped", 3, callback=lambda stats: True)
     with pytest.raises(
         gpfd.InputError, match=r"not a finished run \(generation 0 of 3\).*--resume"
     ):
         gpfd.evolve(replay=tmp_path / "stopped")
     assert not (tmp_path / "stopped-replay").exists()
-    gpfd.evolve(
-        seed=2,
-        population=8,
-        generations=1,
-        runs=2,
-        set={"learner.params.updates": 5},
-        out=tmp_path / "set",
-        verbose=False,
-    )
+    given_sizes_run(tmp_path / "set", 1, runs=2)
     with pytest.raises(gpfd.InputError, match=r"a set of runs: replay each of its runs"):
         gpfd.evolve(replay=tmp_path / "set")
     with pytest.raises(TypeError, match="replay runs the stored config"):
@@ -191,14 +181,6 @@ def test_a_replay_of_no_finished_run_is_refused(cli, tmp_path):
 
 def test_a_set_s_run_replays(tmp_path):
     """Each run of a set is a finished run of its own."""
-    gpfd.evolve(
-        seed=2,
-        population=8,
-        generations=2,
-        runs=2,
-        set={"learner.params.updates": 5},
-        out=tmp_path / "set",
-        verbose=False,
-    )
+    given_sizes_run(tmp_path / "set", 2, runs=2)
     gpfd.evolve(replay=tmp_path / "set/run-02", threads=1, out=tmp_path / "again", verbose=False)
     assert_same_run(tmp_path / "set/run-02", tmp_path / "again")

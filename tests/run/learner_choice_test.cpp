@@ -402,13 +402,17 @@ TEST(LearnerChoice, TrainsNoLearningBesideAndFitsAnAllowance) {
   const auto json = nlohmann::json::parse(run::learnerChoiceJson(whole));
   EXPECT_FALSE(json.contains("cut"));
   EXPECT_EQ(json["tried"][0]["no_learning"].get<double>(), whole.noLearningMeans[0]);
-  const auto cut = run::chooseLearnerSettings(config, threads, 0.0);
-  EXPECT_EQ(cut.cut, run::LearnerChoice::Cut::Candidates);
+  // No time at all: the first training only, the first candidate kept; its score is that
+  // training's in the whole choice (the batches split, the curves the same).
+  const auto cut = run::chooseLearnerSettings(config, threads, 0.0, 2);
+  EXPECT_EQ(cut.cut, run::LearnerChoice::Cut::All);
   ASSERT_EQ(cut.candidates.size(), 1u);
   EXPECT_EQ(cut.chosen, 0u);
-  EXPECT_EQ(cut.means[0], whole.means[0]);  // The first candidate's trainings, as a whole choice.
+  ASSERT_EQ(cut.scores[0].size(), 1u);
+  EXPECT_EQ(cut.scores[0][0], whole.scores[0][0]);
+  EXPECT_FALSE(cut.nothingLearns);
   EXPECT_NE(run::learnerChoiceText(cut).find("NOT chosen"), std::string::npos);
-  EXPECT_EQ(nlohmann::json::parse(run::learnerChoiceJson(cut))["cut"], "candidates");
+  EXPECT_EQ(nlohmann::json::parse(run::learnerChoiceJson(cut))["cut"], "all");
 }
 
 // Where the original variables and no learning score alike with every candidate (a learner of

@@ -55,20 +55,23 @@ struct LearnerChoice {
   int seeds = 0;
   bool confirmation = true;  // Trained as the confirmation trains (else as the validation).
   double seconds = 0.0;      // Wall time of the trainings.
-  // Where the allowance cut it: the random sets left out, or every candidate but the first.
-  enum class Cut { None, RandomSets, Candidates } cut = Cut::None;
-  double firstSeconds = 0.0;      // The first candidate's trainings (original, no learning).
-  double predictedSeconds = 0.0;  // The whole choice's, predicted from them (where cut).
+  // Where the allowance cut it: the random sets left out, every candidate but the first, or all
+  // but the first candidate's first training (no no-learning reference then: its mean -inf).
+  enum class Cut { None, RandomSets, Candidates, All } cut = Cut::None;
+  double firstSeconds = 0.0;      // The first training (the original variables, first seed).
+  double predictedSeconds = 0.0;  // The whole choice's, predicted from it.
 };
 
 // Trains the original variables with each candidate on config.choiceSeeds seeds of a stream of
 // their own (never the run's), on `runner`, and picks the best. Needs learner.choose.
-// `allowance`: wall seconds the choice may take (a time budget's share); the first candidate's
-// trainings are timed, and where the rest would pass it, the random sets are left out, or where
-// that is not enough the first candidate is kept without trying the others (said, and recorded:
+// `allowance`: wall seconds the choice may take (a time budget's share). Its first training is
+// timed, and where the rest, spread over `workers`, would pass the allowance the random sets are
+// left out, or where that is not enough the first candidate is kept without trying the others, or
+// where even its trainings do not fit, without more trainings (said, and recorded:
 // LearnerChoice::cut). The choice then depends on the clock; config.toml records what it chose.
 LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner& runner,
-                                    double allowance = std::numeric_limits<double>::infinity());
+                                    double allowance = std::numeric_limits<double>::infinity(),
+                                    int workers = 1);
 
 // `config` with the chosen values in learner.params and no choice left.
 ExperimentConfig withLearnerChoice(ExperimentConfig config, const LearnerChoice& choice);
