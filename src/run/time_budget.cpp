@@ -209,6 +209,56 @@ CostMeasure measureCosts(const ExperimentConfig& config, const DiscoveryOptions&
   return costs;
 }
 
+double timeOneTraining(const ExperimentConfig& config, const DiscoveryOptions& options) {
+  ThreadTrialRunner threads(1);
+  TrialRunner& runner = options.trialRunner ? *options.trialRunner : threads;
+  const LearningTask task(config, LearningTask::Budget::Trial);
+  const TrialBatch batch{{TrialFeatures::original()},
+                         {{deriveSeed(config.seed, kMeasureStream, 9)}}};
+  return wallSeconds([&] { runner.run(task, batch, {}); });
+}
+
+void refuseBeforeMeasuring(const ExperimentConfig& config, double oneTraining, int workers,
+                           double seconds, const BudgetSpent& spent, const std::string& where,
+                           int runs) {
+  const double each = oneTraining / std::max(1, workers);
+  // The measurement's first round (four random genomes and two of the original variables per
+  // worker, fitness.trials trainings each) and its trial trainings, all at the original
+  // variables' cost, one after another on each worker.
+  const double measuring = oneTraining * (6.0 * config.trials + 2.0);
+  // The smallest run: population kMinPopulation, 2 generations (the second kFreshShare new), and
+  // validation and confirmation at their smallest, spread over the workers.
+  const auto& v = config.validation;
+  const auto ratio = [&](LearningTask::Budget budget) {
+    const double trial = budgetUnits(config, LearningTask::Budget::Trial);
+    const double units = budgetUnits(config, budget);
+    return trial > 0.0 && units > 0.0 ? units / trial : 1.0;
+  };
+  double trainings = (1.0 + kFreshShare) * kMinPopulation * config.trials;
+  if (v.candidates > 0) {
+    trainings += std::min(v.seeds, 10) * (std::min(v.candidates, 3) + 2) *
+                 ratio(LearningTask::Budget::Validation);
+    if (v.confirms()) {
+      trainings += std::min(v.confirmSeeds, std::max(10, 2 * v.confirmLooks)) * 3 *
+                   ratio(LearningTask::Budget::Confirmation);
+    }
+  }
+  const double least = trainings * each;
+  if (measuring + least * runs <= seconds) return;
+  CostMeasure predicted;
+  predicted.seconds = oneTraining + measuring;
+  throw InputError(
+      fmt::format("{:.0f} s{} is too short here: one training of the original variables took "
+                  "{:.1f} s, so measuring what an evaluation costs would take about {:.0f} s and "
+                  "the smallest run (population {}, 2 generations, the smallest validation) about "
+                  "{:.0f} s{}; give at least {:.0f} s{}, or the sizes",
+                  spent.budget, runs > 1 ? fmt::format(" for {} runs", runs) : "", oneTraining,
+                  measuring, kMinPopulation, least,
+                  runs > 1 ? fmt::format(", {} runs about {:.0f} s", runs, least * runs) : "",
+                  sufficientBudget(predicted, least * runs, spent), runs > 1 ? ", fewer runs" : ""),
+      where);
+}
+
 double finishSeconds(const ExperimentConfig& config, const CostMeasure& costs,
                      const BudgetSizes& sizes) {
   if (config.validation.candidates == 0) return 0.0;

@@ -155,10 +155,13 @@ run::ExperimentConfig sizeToBudget(const run::ExperimentConfig& config, int runs
   if (options.processes > 1) {
     throw InputError("a time budget is not measured under MPI: give the sizes instead", where);
   }
-  const double left = config.timeBudget - spent.choice;
+  double left = config.timeBudget - spent.choice;
   progress.preparing(
       fmt::format("measuring what an evaluation and a training cost here (at least {:.0f} s)",
                   std::ceil(run::kMeasureShare * config.timeBudget)));
+  const double one = run::timeOneTraining(config, options);
+  left -= one;
+  run::refuseBeforeMeasuring(config, one, options.threads, left, spent, where, runs);
   const auto costs = run::measureCosts(config, options, run::kMeasureShare * config.timeBudget,
                                        run::kMeasureMaxShare * config.timeBudget);
   const auto sizes =

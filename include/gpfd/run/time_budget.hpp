@@ -87,6 +87,17 @@ inline constexpr double kValidationShare = 0.3;
 // sets the population, the deadline ends the generations.
 inline constexpr double kFreshShare = 0.65;
 
+// Wall seconds of one trial training of the original variables (on the run's trial runner, else
+// one thread): what refuseBeforeMeasuring predicts from.
+double timeOneTraining(const ExperimentConfig& config, const DiscoveryOptions& options);
+// InputError at `where`, naming a budget that works (sufficientBudget), where the measurement
+// and `runs` smallest runs, predicted from `oneTraining` (each training at its cost, spread over
+// `workers`), cannot fit the `seconds` left: on a slow task the refusal comes before the
+// measurement, which alone may take longer than the budget.
+void refuseBeforeMeasuring(const ExperimentConfig& config, double oneTraining, int workers,
+                           double seconds, const BudgetSpent& spent, const std::string& where,
+                           int runs);
+
 // Sizes for each of `runs` runs of `seconds` (the measurement's time already spent), from
 // `config`'s own sizes as the upper bound of the validation's. InputError at `where` when not even
 // the smallest run fits, naming a whole budget that would (sufficientBudget), `spent` included.
