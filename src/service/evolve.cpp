@@ -251,8 +251,8 @@ EvolveResult runSingle(const run::ExperimentConfig& config, const run::Discovery
 EvolveResult replay(const EvolveRequest& request, run::DiscoveryOptions options,
                     EvolveProgress& progress, const std::atomic<bool>& stop) {
   const std::string& dir = request.replay;
-  if (!request.overrides.empty() || request.runs || request.generations ||
-      !request.resume.empty()) {
+  if (!request.config.empty() || !request.overrides.empty() || request.runs ||
+      request.generations || !request.resume.empty()) {
     throw InputError(
         "a replay runs the stored config and sizes again: only the threads (or workers) and the "
         "results directory may be given",
