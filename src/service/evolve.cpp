@@ -316,8 +316,9 @@ EvolveResult evolve(const EvolveRequest& request, EvolveProgress& progress,
   // comes from the config (user-env's default), unless the budget is given too.
   if (givesSizes(request) && !givesKey(overrides, "time_budget")) config.timeBudget = 0.0;
   const int runs = request.runs.value_or(1);
-  run::BudgetSpent spent{config.timeBudget};  // What choosing the learner's settings took.
-  double perRunSeconds = 0.0;                 // A time budget's share of each run.
+  run::BudgetSpent spent;  // What choosing the learner's settings took.
+  spent.budget = config.timeBudget;
+  double perRunSeconds = 0.0;  // A time budget's share of each run.
   if (run::choosesLearner(config)) config = chooseLearner(config, options, spent, progress);
   if (config.timeBudget > 0.0) {
     config = sizeToBudget(config, runs, spent, options, perRunSeconds, progress);
