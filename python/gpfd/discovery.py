@@ -441,7 +441,8 @@ def evolve(
         that set another.
     callback: called after each generation (once its checkpoint is written) with its statistics
         (generation, best, mean, median, mean_size, mean_features, evaluations, cache_hits,
-        seconds, best_features); a true return value stops the run there.
+        seconds, best_features, and generations: the run's, as a time budget's deadline refits
+        them); a true return value stops the run there.
     resume: continue the run in this directory (with its stored config; only ``generations`` may
         extend it, ``threads`` may change). A run on an environment stepped in Python needs
         ``env`` (and ``env_kwargs``) again where it was a callable; a Gymnasium id or EnvPool
