@@ -100,17 +100,22 @@ double bestQuarterOfRandomSets(const LearningTask& task, const std::vector<expr:
   return sum / static_cast<double>(quarter);
 }
 
-// Whether every candidate's merit (the original variables' mean, or the random sets' where
-// higher) equals its no-learning mean to 1e-6 of their scale: no feature set tried makes the
+// Whether, with every candidate, the original variables' mean and (where tried) the random
+// sets' both equal the no-learning mean to 1e-6 of their scale: no feature set tried makes the
 // learner score other than a policy that ignores the state (MountainCar-v0: -200 everywhere).
 // Scores that only differ by less than their noise are not taken for it: a short training
 // that learns little is not one that cannot learn.
 bool noCandidateLearns(const LearnerChoice& choice) {
+  const auto alike = [](double a, double b) {
+    const double scale = std::max({1.0, std::abs(a), std::abs(b)});
+    return std::isfinite(a) && std::isfinite(b) && std::abs(a - b) <= 1e-6 * scale;
+  };
   for (std::size_t c = 0; c < choice.candidates.size(); ++c) {
-    const double merit = choice.merits[c], reference = choice.noLearningMeans[c];
-    if (!std::isfinite(merit) || !std::isfinite(reference)) return false;
-    const double scale = std::max({1.0, std::abs(merit), std::abs(reference)});
-    if (std::abs(merit - reference) > 1e-6 * scale) return false;
+    const double reference = choice.noLearningMeans[c];
+    if (!alike(choice.means[c], reference)) return false;
+    if (!choice.randomSetsBest.empty() && !alike(choice.randomSetsBest[c], reference)) {
+      return false;
+    }
   }
   return !choice.candidates.empty();
 }

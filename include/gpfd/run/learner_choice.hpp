@@ -45,8 +45,9 @@ struct LearnerChoice {
   std::vector<double> randomSetsBest;
   std::vector<double> merits;  // What the choice compares: the mean, or the random sets' if higher.
   std::vector<double> noLearningMeans;  // The no-learning reference's, with each, on the seeds.
-  // Every candidate's merit equals its no-learning mean (to 1e-6 of their scale): the learner
-  // learns nothing here (nothingLearnsText).
+  // With every candidate, the original variables' mean and the random sets' equal the
+  // no-learning mean (to 1e-6 of their scale): the learner learns nothing here
+  // (nothingLearnsText).
   bool nothingLearns = false;
   int randomSets = 0;
   // The best mean, the first listed of equal ones; with learner.choose_significance, the first
