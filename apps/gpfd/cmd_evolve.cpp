@@ -33,6 +33,7 @@ struct EvolveOptions {
   std::optional<std::string> out;
   bool force = false;
   std::string resume;
+  std::string replay;
   std::vector<std::string> sets;
   std::optional<int> runs;
   std::optional<std::string> timeBudget;
@@ -70,6 +71,7 @@ int evolve(const EvolveOptions& o) {
   request.overrides = overrides(o);
   request.out = {o.out, o.force, "--out"};
   request.resume = o.resume;
+  request.replay = o.replay;
   request.generations = o.generations;
   request.runs = o.runs;
   request.threads = o.threads;
@@ -137,6 +139,11 @@ const CommandRegistration registration{
       cmd->add_flag("--force", o->force,
                     "Write into an --out that already holds files (never over a run: resume it)");
       cmd->add_option("--resume", o->resume, "Continue the run in this results directory");
+      cmd->add_option("--replay", o->replay,
+                      "Rerun the finished run in this results directory with the sizes and "
+                      "learner settings it used (those a time budget chose), into a fresh "
+                      "directory (--out; default results/<its name>-replay): the same files but "
+                      "timings, on any number of threads");
       cmd->add_option("--set", o->sets, "Override any config key: --set gp.elitism=0.2")
           ->allow_extra_args(false);
       cmd->add_option("--runs", o->runs,

@@ -1,8 +1,9 @@
 """Discovery (``gpfd evolve``), GP's fitness, assessment (``gpfd assess``) and results directories.
 
 ``evolve`` and ``assess`` call the same C++ code as the command line, with the same config loading
-(a TOML file or a shipped config name, ``key=value`` overrides): the same seed gives the same
-``best.features`` from Python as from ``gpfd evolve``, whatever the number of threads.
+(a TOML file or a shipped config name, ``key=value`` overrides): the same seed and sizes give the
+same ``best.features`` from Python as from ``gpfd evolve``, whatever the number of threads; a time
+budget's sizes come from the clock, and ``evolve(replay=...)`` reruns such a run exactly.
 """
 
 from __future__ import annotations
@@ -412,8 +413,16 @@ def evolve(
     executor: Executor | None = None,
     native: bool | None = None,
     task_timeout: float | str | None = None,
+    replay: str | os.PathLike | None = None,
 ) -> Run:
     """Discovers features with GP, exactly as ``gpfd evolve`` does, and returns the run.
+
+    The same seed and sizes give the same run, whatever ``threads`` or ``executor``. A time
+    budget (``time_budget``, and ``user-env``'s default of 3 minutes) sizes the run from the
+    clock: the population and validation from measured speed, the generations fitted to the
+    deadline, the learner's settings chosen on the task; two calls with the same seed may then
+    differ. Such a run says so (printed, and run.json's ``"sizes"``), and ``replay=`` reruns it
+    exactly.
 
     config: a TOML file or a shipped config name (default ``cartpole-quick``; ``user-env`` for an
         environment stepped in Python).
@@ -432,12 +441,12 @@ def evolve(
         run) and a verdict on the method over them, like ``gpfd evolve --runs N`` (runs.csv);
         the Run returned is their directory's.
     threads: worker threads (processes for a Python environment); 0: all cores. Never changes
-        the results.
+        the results of given sizes (a time budget's sizes come from the clock: see ``replay``).
     executor: a ``concurrent.futures.Executor`` (a Dask client's ``get_executor()``, mpi4py's
         ``MPIPoolExecutor``, loky, ``ProcessPoolExecutor``) whose workers step an environment
         stepped in Python instead of gpfd's own worker processes; ``threads`` then only says how
         many workers to size the work for (0: the executor's own count). Never shut down by
-        gpfd; never changes the results.
+        gpfd; never changes the results of given sizes (see ``replay``).
     out: the results directory (default ``results/<name>``, or ``results/<name>-N`` when taken:
         the config's name, or for an environment stepped in Python the environment's);
         one that already holds files needs ``force=True``, one that holds a run is resumed with
@@ -466,7 +475,8 @@ def evolve(
         retried with the same seeds, so a retried task gives the same result.
     callback: called after each generation (once its checkpoint is written) with its statistics
         (generation, best, mean, median, mean_size, mean_features, evaluations, cache_hits,
-        seconds, best_features); a true return value stops the run there.
+        seconds, best_features, and generations: the run's, as a time budget's deadline refits
+        them); a true return value stops the run there.
     resume: continue the run in this directory (with its stored config; only ``generations`` may
         extend it, ``threads`` may change). A run on an environment stepped in Python needs
         ``env`` (and ``env_kwargs``) again where it was a callable; a Gymnasium id or EnvPool
@@ -495,16 +505,24 @@ def evolve(
         generations = _whole("generations", generations, 0)
     env = _twin_or_gymnasium(env, env_kwargs, native, executor, say=verbose is not False)
     out_name = ""
-    if resume is not None:
+    if replay is not None:
+        given_sizes = (seed, population, set, time_budget, generations, runs, resume)
+        if any(value is not None for value in given_sizes):
+            raise TypeError(
+                "replay runs the stored config and sizes again; only threads, executor, out, "
+                "force, env and env_kwargs may be given"
+            )
+    stored_run = resume if resume is not None else replay
+    if stored_run is not None:
         if seed is not None or population is not None or set is not None or time_budget is not None:
             raise TypeError("resume continues with the stored config; only generations may change")
         if task_timeout is not None:
-            raise TypeError("resume continues with the stored config and its task_timeout")
+            raise TypeError("resume and replay run with the stored config and its task_timeout")
         overrides: list[str] = []
-        evaluator = _resumed_env(resume, env, env_kwargs)
+        evaluator = _resumed_env(stored_run, env, env_kwargs)
         if evaluator is not None:
             given = evaluator.name if env is None or isinstance(env, str) else env
-            _check_resumed_task(resume, _task_fingerprint(given, env_kwargs, evaluator))
+            _check_resumed_task(stored_run, _task_fingerprint(given, env_kwargs, evaluator))
     else:
         overrides, evaluator = _env_overrides(env, env_kwargs)
         if evaluator is not None or env in twins.TWINS:
@@ -521,7 +539,7 @@ def evolve(
     _use_workers(evaluator, threads, executor, env)
     overrides += _task_timeout(task_timeout, evaluator, env)
     fingerprint = ""  # run.json's "env" of each run started: what a resume checks.
-    if evaluator is not None and resume is None:
+    if evaluator is not None and stored_run is None:
         given = evaluator.name if isinstance(env, str) else env
         fingerprint = json.dumps(_task_fingerprint(given, env_kwargs, evaluator))
 
@@ -551,6 +569,7 @@ def evolve(
                 _resume_call(env, env_kwargs),
                 lambda: watch.seen,
                 fingerprint,
+                "" if replay is None else os.fspath(replay),
             )
         except InputError as e:
             for key, given in (("time_budget", time_budget), ("task_timeout", task_timeout)):

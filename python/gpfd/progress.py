@@ -5,11 +5,13 @@ stderr is a terminal or the code runs in a notebook, and nothing otherwise (a lo
 batch job); ``verbose=True`` prints what ``gpfd evolve`` prints, ``verbose=False`` nothing. What
 stops a run is always said, on stderr.
 
-The bar follows the C++ run through gpfd._core.evolve's ``observer``: ``run_started`` and
-``run_ended`` around each run, ``poll`` every half second from a thread of the run (the running
-stage: ``generations`` with the evaluations of the running generation, then ``validation`` and
-``confirmation`` with their trainings), and ``generation`` after each generation (its
-statistics, as the callback sees them).
+The bar follows the C++ run through gpfd._core.evolve's ``observer``: ``phase`` as each stage
+before a run begins (choosing the learner's settings, measuring what an evaluation costs),
+``run_started`` and ``run_ended`` around each run, ``poll`` every half second from a thread of
+the run (the running stage: ``generations`` with the evaluations of the running generation and
+the run's generations as its deadline refits them, then ``validation`` and ``confirmation`` with
+their trainings), and ``generation`` after each generation (its statistics, as the callback sees
+them).
 """
 
 from __future__ import annotations
@@ -122,23 +124,43 @@ class EvolveBar:
             self._describe_generations(None)
             self._bar.refresh()
 
+    def phase(self, text: str) -> None:
+        """A stage before the run starts (choosing the learner's settings, measuring what an
+        evaluation costs): shown as it begins, with the time it has taken."""
+        with self._lock:
+            self._close()
+            self._stage = "phase"
+            self._bar = self._tqdm(
+                total=None, desc=text, file=self._file, bar_format="{desc} [{elapsed}]", leave=True
+            )
+            self._bar.refresh()
+
+    def _set_generations(self, generations: int | None) -> None:
+        """The run's generations as its time budget's deadline refits them: the bar's total."""
+        if generations is not None and generations > 0 and generations != self._generations:
+            self._generations = generations
+            self._bar.total = generations
+
     def generation(self, stats: dict[str, Any]) -> None:
         """After each generation, with the callback's statistics."""
         with self._lock:
             if self._bar is None or self._stage != "evolve":
                 return
+            self._set_generations(stats.get("generations"))
             self._done = int(stats["generation"]) + 1
             self._best = float(stats["best"])  # The generation's, as `gpfd evolve` prints it.
             self._describe_generations(None)
             self._move_to(self._done)
 
-    def poll(self, stage: str, done: int, total: int) -> None:
-        """The running stage: `done` of `total` evaluations (generations) or trainings."""
+    def poll(self, stage: str, done: int, total: int, generations: int | None = None) -> None:
+        """The running stage: `done` of `total` evaluations (generations) or trainings;
+        `generations`: the run's, as its deadline refits them."""
         with self._lock:
-            if self._bar is None:
+            if self._bar is None or self._stage == "phase":
                 return
             if stage == "generations":
                 if self._stage == "evolve":
+                    self._set_generations(generations)
                     # Within a generation: its share of evaluations (re-evaluations may pass it).
                     share = min(done / self._population, 0.99)
                     self._describe_generations(done)

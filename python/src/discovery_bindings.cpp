@@ -94,6 +94,7 @@ nb::dict generationDict(const run::GenerationRecord& r, const run::Discovery& di
   d["evaluations"] = r.evaluations;
   d["cache_hits"] = r.cacheHits;
   d["seconds"] = r.seconds;
+  d["generations"] = discovery.stage().generations;  // As a time budget's deadline refits them.
   expr::FeaturesFile best;
   best.env = discovery.config().env;
   best.variables = variables;
@@ -196,6 +197,18 @@ class PythonProgress final : public service::EvolveProgress {
     text_.alreadyComplete(dir, generations);
   }
   void preparedRun(const std::string& text) override { text_.preparedRun(text); }
+  // A stage before the run (the learner's choice, a budget's measurement): said, and shown by the
+  // display where it has `phase`.
+  void preparing(const std::string& phase) override {
+    text_.preparing(phase);
+    if (observer_.is_none()) return;
+    nb::gil_scoped_acquire gil;
+    try {
+      if (nb::hasattr(observer_, "phase")) observer_.attr("phase")(phase);
+    } catch (nb::python_error& e) {
+      e.discard_as_unraisable("gpfd.evolve's progress display");
+    }
+  }
 
   // Whether the error being handled is an interruption: KeyboardInterrupt, or any error after
   // Ctrl-C (which may surface as another). Call within a catch block, without the GIL.
@@ -243,7 +256,7 @@ class PythonProgress final : public service::EvolveProgress {
   // Needs the GIL.
   void tellStage() {
     const run::RunStage stage = discovery_->stage();
-    observer_.attr("poll")(run::stageName(stage.kind), stage.done, stage.total);
+    observer_.attr("poll")(run::stageName(stage.kind), stage.done, stage.total, stage.generations);
   }
 
   // The stage where the run ended (so that the display shows it whatever the timing), then the
@@ -306,8 +319,9 @@ nb::tuple evolve(const std::string& config, const std::vector<std::string>& over
                  std::optional<int> generations, std::optional<int> runs, nb::object onGeneration,
                  nb::object evaluate, std::optional<bool> verbose, nb::object observer,
                  const std::string& outName, const std::string& resumeCommand,
-                 nb::object interrupted, const std::string& envJson) {
+                 nb::object interrupted, const std::string& envJson, const std::string& replay) {
   service::EvolveRequest request;
+  request.replay = replay;
   request.config = config;
   request.overrides = overrides;
   request.out = {std::move(out), force, "out"};
@@ -465,10 +479,13 @@ void bindDiscovery(nb::module_& m) {
         nb::arg("verbose").none(), nb::arg("observer").none() = nb::none(),
         nb::arg("out_name") = "", nb::arg("resume_command") = "gpfd.evolve(resume=\"{}\")",
         nb::arg("interrupted").none() = nb::none(), nb::arg("env_json") = "",
-        "Runs (or resumes) discovery through the service layer, like `gpfd evolve`; returns "
+        nb::arg("replay") = "",
+        "Runs (or resumes, or replays) discovery through the service layer, like `gpfd evolve`; "
+        "returns "
         "(results dir, finished, interruption: the text of the KeyboardInterrupt to raise when "
         "Ctrl-C stopped "
-        "it, else empty). env_json: run.json's \"env\" of each run started (a JSON object).");
+        "it, else empty). env_json: run.json's \"env\" of each run started (a JSON object); "
+        "replay: the finished run to rerun with its sizes.");
   m.def("trial_fitness_group", &trialFitnessGroupOf, nb::arg("config_text"), nb::arg("tasks"),
         "run::trialFitness of each (genome wire record, seed), played in one lockstep group: the "
         "evaluations' episodes share one vector environment (the worker processes' task).");

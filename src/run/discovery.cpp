@@ -27,6 +27,17 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// run.json's "sizes" of a run sized by a time budget: what the clock chose, the generations as
+// fitted to the deadline so far; a replay (run/replay.hpp) runs them again.
+nlohmann::ordered_json sizesJson(const ExperimentConfig& config) {
+  return {{"from_clock", true},
+          {"population", config.gp.population},
+          {"generations", config.gp.generations},
+          {"candidates", config.validation.candidates},
+          {"seeds", config.validation.seeds},
+          {"confirm_seeds", config.validation.confirmSeeds}};
+}
+
 std::vector<gp::Evaluator*> pointers(const std::vector<std::unique_ptr<gp::Evaluator>>& owned) {
   std::vector<gp::Evaluator*> out;
   for (const auto& e : owned) out.push_back(e.get());
@@ -60,6 +71,7 @@ struct Discovery::State {
   LearningTask task;
   std::atomic<long> done{0};
   std::atomic<int> stage{RunStage::Generations}, stageDone{0}, stageTotal{0};  // Discovery::stage
+  std::atomic<int> generationsNow{0};  // config.gp.generations, for displays on other threads.
   int threads = 0;  // As recorded in run.json: the resolved count, or the option given to MPI.
   std::unique_ptr<gp::Evaluator> evaluator;
   // Successive halving's longer rungs (fitnessRungs), shortest first; none without it.
@@ -69,6 +81,7 @@ struct Discovery::State {
   gp::Evolution evolution;
   std::vector<GenerationRecord> history;
   ValidationState validation;
+  nlohmann::ordered_json runJson;        // run.json, as written at the start (not on a resume).
   std::unique_ptr<Validator> validator;  // Made when first needed.
 
   State(const ExperimentConfig& c, const DiscoveryOptions& o)
@@ -84,6 +97,7 @@ struct Discovery::State {
         evolution(gpConfig(c), searchSpace(c, static_cast<int>(task.stateDim())), cache,
                   genomeReducer(c, task), genomeAdmissible(c, task), pointers(rungEvaluators)) {
     validation.parsimonySe = c.validation.parsimonySe;
+    generationsNow.store(c.gp.generations);
   }
 
   std::unique_ptr<gp::Evaluator> makeEvaluator() {
@@ -166,25 +180,37 @@ struct Discovery::State {
   // those that still fit before the deadline, validation and confirmation left out, each as long
   // as the longest of the last three, a last one counted where half of it fits (rounding, not
   // truncating: the run ends within half a generation of the deadline on either side, where
-  // truncating ended it up to a whole one early); written into config.toml and the checkpoint
-  // when they change.
+  // truncating ended it up to a whole one early), validation and confirmation kept free as
+  // DiscoveryOptions::finishTrainings says; written into config.toml and the checkpoint when they
+  // change.
   void fitDeadline() {
     if (!options.deadline) return;
-    double next = 0.0;
+    double next = 0.0, perTraining = 0.0;
     for (std::size_t i = history.size() > 3 ? history.size() - 3 : 0; i < history.size(); ++i) {
       next = std::max(next, history[i].seconds);
+      const int trainings = history[i].evaluations * config.trials;
+      if (trainings > 0) perTraining = std::max(perTraining, history[i].seconds / trainings);
     }
+    const double finish = std::max(options.finishSeconds, options.finishTrainings * perTraining);
     const double left =
         std::chrono::duration<double>(*options.deadline - std::chrono::steady_clock::now())
             .count() -
-        options.finishSeconds;
+        finish;
     const double fit = next > 0.0 ? std::round(std::max(0.0, left) / next) : 0.0;
     const int generations = evolution.generation() + 1 + static_cast<int>(std::min(fit, 1e6));
     if (generations == config.gp.generations) return;
     config.gp.generations = generations;
+    generationsNow.store(generations);
     configText = formatExperimentConfig(config);
     writeFileAtomically(path("config.toml"), configText);
+    writeRunJson();
     writeCheckpoint();
+  }
+
+  // run.json, its "sizes" (a time budget's) as the config holds them now.
+  void writeRunJson() {
+    if (runJson.contains("sizes")) runJson["sizes"] = sizesJson(config);
+    writeFileAtomically(path("run.json"), runJson.dump(1) + "\n");
   }
 
   // Scores the hall of fame members (and the original variables) not validated yet.
@@ -329,8 +355,11 @@ std::unique_ptr<Discovery> Discovery::start(const ExperimentConfig& config,
     if (!options.timeBudgetJson.empty()) {
       run["time_budget"] = nlohmann::ordered_json::parse(options.timeBudgetJson);
     }
+    if (!options.timeBudgetJson.empty()) run["sizes"] = sizesJson(config);
     if (!options.envJson.empty()) run["env"] = nlohmann::ordered_json::parse(options.envJson);
-    writeFileAtomically(state->path("run.json"), run.dump(1) + "\n");
+    if (!options.replayOf.empty()) run["replay_of"] = options.replayOf;
+    state->runJson = std::move(run);
+    state->writeRunJson();
   } catch (...) {
     // Leave nothing half-made behind.
     std::error_code ignored;
@@ -430,7 +459,7 @@ RunStage Discovery::stage() const {
   const auto kind = static_cast<RunStage::Kind>(s_->stage.load());
   // In the generations, `done` is the evaluations so far (progress()).
   const long done = kind == RunStage::Generations ? progress() : s_->stageDone.load();
-  return {kind, static_cast<int>(done), s_->stageTotal.load()};
+  return {kind, static_cast<int>(done), s_->stageTotal.load(), s_->generationsNow.load()};
 }
 
 const char* stageName(RunStage::Kind kind) {

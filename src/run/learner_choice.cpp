@@ -100,6 +100,26 @@ double bestQuarterOfRandomSets(const LearningTask& task, const std::vector<expr:
   return sum / static_cast<double>(quarter);
 }
 
+// Whether, with every candidate, the original variables' mean and (where tried) the random
+// sets' both equal the no-learning mean to 1e-6 of their scale: no feature set tried makes the
+// learner score other than a policy that ignores the state (MountainCar-v0: -200 everywhere).
+// Scores that only differ by less than their noise are not taken for it: a short training
+// that learns little is not one that cannot learn.
+bool noCandidateLearns(const LearnerChoice& choice) {
+  const auto alike = [](double a, double b) {
+    const double scale = std::max({1.0, std::abs(a), std::abs(b)});
+    return std::isfinite(a) && std::isfinite(b) && std::abs(a - b) <= 1e-6 * scale;
+  };
+  for (std::size_t c = 0; c < choice.candidates.size(); ++c) {
+    const double reference = choice.noLearningMeans[c];
+    if (!alike(choice.means[c], reference)) return false;
+    if (!choice.randomSetsBest.empty() && !alike(choice.randomSetsBest[c], reference)) {
+      return false;
+    }
+  }
+  return !choice.candidates.empty();
+}
+
 }  // namespace
 
 bool choosesLearner(const ExperimentConfig& config) {
@@ -123,31 +143,81 @@ std::vector<std::map<std::string, std::string>> learnerCandidates(const Experime
   return combinations;
 }
 
-LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner& runner) {
+LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner& runner,
+                                    double allowance, int workers) {
   const auto start = std::chrono::steady_clock::now();
+  const auto elapsed = [&start] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
   LearnerChoice choice;
   choice.candidates = learnerCandidates(config);
   choice.seeds = config.choiceSeeds;
   choice.randomSets = config.choiceRandomSets;
-  TrialBatch batch{{TrialFeatures::original()}, {{}}};
+  std::vector<std::uint64_t> seeds;
   for (int i = 0; i < config.choiceSeeds; ++i) {
-    batch.seeds[0].push_back(deriveSeed(config.seed, kChoiceStream, static_cast<std::uint64_t>(i)));
+    seeds.push_back(deriveSeed(config.seed, kChoiceStream, static_cast<std::uint64_t>(i)));
   }
   choice.confirmation = config.validation.confirms();
   const auto budget =
       choice.confirmation ? LearningTask::Budget::Confirmation : LearningTask::Budget::Validation;
+  // The original variables on the seeds from `from` on and, on every seed, the no-learning
+  // reference (a curve depends on its features, budget and seed only: batches split anyhow
+  // train the same curves).
+  const auto trainPairs = [&](const LearningTask& task, std::size_t from) {
+    const TrialFeatures original = TrialFeatures::original(), none = TrialFeatures::noLearning();
+    if (from == 0) return runner.run(task, {{original, none}, {seeds, seeds}}, {});
+    // A batch's sets share their seeds' count: the two apart.
+    const std::vector<std::uint64_t> rest(seeds.begin() + static_cast<std::ptrdiff_t>(from),
+                                          seeds.end());
+    auto curves = runner.run(task, {{original}, {rest}}, {});
+    curves.push_back(runner.run(task, {{none}, {seeds}}, {})[0]);
+    return curves;
+  };
   std::vector<expr::Genome> genomes;
-  for (const auto& candidate : choice.candidates) {
+  bool withRandomSets = config.choiceRandomSets > 0;
+  for (std::size_t c = 0; c < choice.candidates.size(); ++c) {
     ExperimentConfig trained = config;
     trained.learnerChoices.clear();
     trained.learnerAlternatives.clear();
-    for (const auto& [key, value] : candidate) trained.learnerParams[key] = value;
+    for (const auto& [key, value] : choice.candidates[c]) trained.learnerParams[key] = value;
     const LearningTask task(trained, budget);
-    const auto curves = runner.run(task, batch, {});
-    choice.scores.push_back(task.scores(curves[0]));
-    choice.means.push_back(meanOrWorst(choice.scores.back()));
+    std::vector<double> scores;
+    if (c == 0) {
+      // One training, timed, sizes the rest: all of it where it fits the allowance, else
+      // without the random sets, else the first candidate alone, else none but this one.
+      scores = task.scores(runner.run(task, {{TrialFeatures::original()}, {{seeds[0]}}}, {})[0]);
+      choice.firstSeconds = elapsed();
+      const double each = choice.firstSeconds / std::max(1, workers);
+      const double pairs = 2.0 * config.choiceSeeds;
+      const double random = withRandomSets ? kRandomSetSeeds * config.choiceRandomSets : 0.0;
+      const auto candidates = static_cast<double>(choice.candidates.size());
+      choice.predictedSeconds = each * (pairs + random) * candidates;
+      if (each * pairs > allowance && (candidates > 1 || withRandomSets || pairs > 2)) {
+        choice.cut = LearnerChoice::Cut::All;
+        choice.candidates.resize(1);
+        choice.scores.push_back(scores);
+        choice.means.push_back(meanOrWorst(scores));
+        choice.noLearningMeans.push_back(kWorst);
+        choice.merits.push_back(choice.means.back());
+        break;
+      }
+      if (choice.predictedSeconds > allowance && withRandomSets) {
+        withRandomSets = false;
+        choice.cut = LearnerChoice::Cut::RandomSets;
+      }
+      if (each * pairs * candidates > allowance && candidates > 1) {
+        choice.cut = LearnerChoice::Cut::Candidates;
+        choice.candidates.resize(1);
+      }
+    }
+    const auto curves = trainPairs(task, scores.size());
+    const auto more = task.scores(curves[0]);
+    scores.insert(scores.end(), more.begin(), more.end());
+    choice.scores.push_back(scores);
+    choice.means.push_back(meanOrWorst(scores));
+    choice.noLearningMeans.push_back(meanOrWorst(task.scores(curves[1])));
     choice.merits.push_back(choice.means.back());
-    if (config.choiceRandomSets > 0) {
+    if (withRandomSets) {
       if (genomes.empty()) genomes = randomSets(config, task);
       choice.randomSetsBest.push_back(bestQuarterOfRandomSets(task, genomes, runner));
       choice.merits.back() = std::max(choice.merits.back(), choice.randomSetsBest.back());
@@ -157,7 +227,9 @@ LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner&
     if (choice.merits[c] > choice.merits[choice.chosen]) choice.chosen = c;
   }
   if (config.choiceSignificance > 0.0) choice.chosen = earliestNotWorse(choice, config);
-  choice.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // Only a whole choice tells that nothing learns: random sets not tried may learn.
+  choice.nothingLearns = choice.cut == LearnerChoice::Cut::None && noCandidateLearns(choice);
+  choice.seconds = elapsed();
   return choice;
 }
 
@@ -179,14 +251,35 @@ std::string learnerChoiceText(const LearnerChoice& choice) {
         random ? fmt::format(" (random sets {:.4g})", choice.randomSetsBest[c]) : std::string(),
         settingsText(choice.candidates[c])));
   }
+  std::string cut;
+  if (choice.cut == LearnerChoice::Cut::RandomSets) {
+    cut = fmt::format(
+        "; without the random sets: trying them too would take about {:.0f} s, more than the "
+        "time budget's share for the choice",
+        choice.predictedSeconds);
+  } else if (choice.cut == LearnerChoice::Cut::All) {
+    cut = fmt::format(
+        "; NOT chosen: the first alternative kept after one training of the original variables "
+        "({:.2g} s), since trying them would take about {:.0f} s, more than the time budget's "
+        "share for the choice, and nothing learning not checked; give a longer budget, or the "
+        "settings (learner.params)",
+        choice.firstSeconds, choice.predictedSeconds);
+  } else if (choice.cut == LearnerChoice::Cut::Candidates) {
+    cut = fmt::format(
+        "; NOT chosen: the first alternative kept, untried against the others, since trying them "
+        "would take about {:.0f} s, more than the time budget's share for the choice (its first "
+        "training took {:.2g} s); give a longer budget, or the settings (learner.params)",
+        choice.predictedSeconds, choice.firstSeconds);
+  }
   return fmt::format(
       "learner settings chosen on this task: {} (the original variables' mean score on {} fresh "
-      "seeds{}, trained as the {} trains: {}; {:.2g} s); written to config.toml\n",
+      "seeds{}, trained as the {} trains: {}; {:.2g} s{}); written to config.toml\n",
       settingsText(choice.candidates.at(choice.chosen)), choice.seeds,
       random ? fmt::format(", or the best quarter of {} random feature sets' on {} seeds if higher",
                            choice.randomSets, kRandomSetSeeds)
              : std::string(),
-      choice.confirmation ? "confirmation" : "validation", fmt::join(tried, "; "), choice.seconds);
+      choice.confirmation ? "confirmation" : "validation", fmt::join(tried, "; "), choice.seconds,
+      cut);
 }
 
 std::string learnerChoiceJson(const LearnerChoice& choice) {
@@ -195,17 +288,42 @@ std::string learnerChoiceJson(const LearnerChoice& choice) {
     const auto number = [](double value) {
       return std::isfinite(value) ? nlohmann::ordered_json(value) : nullptr;
     };
-    tried.push_back({{"settings", choice.candidates[c]}, {"mean", number(choice.means[c])}});
+    tried.push_back({{"settings", choice.candidates[c]},
+                     {"mean", number(choice.means[c])},
+                     {"no_learning", number(choice.noLearningMeans[c])}});
     // Only with random sets, so that other choices keep run.json's bytes.
     if (!choice.randomSetsBest.empty()) {
       tried.back()["random_sets_best"] = number(choice.randomSetsBest[c]);
     }
   }
-  return nlohmann::ordered_json{{"seeds", choice.seeds},
-                                {"training", choice.confirmation ? "confirmation" : "validation"},
-                                {"tried", tried},
-                                {"chosen", choice.candidates.at(choice.chosen)}}
-      .dump();
+  nlohmann::ordered_json json{{"seeds", choice.seeds},
+                              {"training", choice.confirmation ? "confirmation" : "validation"},
+                              {"tried", tried},
+                              {"chosen", choice.candidates.at(choice.chosen)},
+                              {"nothing_learns", choice.nothingLearns}};
+  // Only where the time budget cut the choice, so that a whole choice keeps its bytes.
+  if (choice.cut == LearnerChoice::Cut::RandomSets) json["cut"] = "random sets";
+  if (choice.cut == LearnerChoice::Cut::Candidates) json["cut"] = "candidates";
+  if (choice.cut == LearnerChoice::Cut::All) json["cut"] = "all";
+  return json.dump();
+}
+
+std::string nothingLearnsText(const LearnerChoice& choice) {
+  const std::size_t c = choice.chosen;
+  return fmt::format(
+      "nothing learns here: with every learner setting tried, the original variables ({:.4g}){} "
+      "score as no learning does, a policy that ignores the state ({:.4g}), over the {} seeds, so "
+      "GP would compare feature sets that all score alike. The learner does not learn this task "
+      "at these settings: give it more to learn from (learner.params: more updates or episodes "
+      "per update; other learner.choose alternatives), a longer episode or a reward that grades "
+      "progress (a sparse reward such as MountainCar-v0's is reached only by exploring), or "
+      "another learner (learner.name)",
+      choice.means[c],
+      choice.randomSetsBest.empty()
+          ? std::string()
+          : fmt::format(" and the best quarter of {} random feature sets ({:.4g})",
+                        choice.randomSets, choice.randomSetsBest[c]),
+      choice.noLearningMeans[c], choice.seeds);
 }
 
 }  // namespace gpfd::run

@@ -8,10 +8,12 @@
 #include <nlohmann/json.hpp>
 
 #include "gpfd/gp/init.hpp"
+#include "gpfd/rl/learner.hpp"
 #include "gpfd/run/learning_task.hpp"
 #include "gpfd/run/thread_evaluator.hpp"
 #include "gpfd/run/trial_runner.hpp"
 #include "gpfd/util/error.hpp"
+#include "gpfd/util/number.hpp"
 
 namespace gpfd::run {
 namespace {
@@ -50,6 +52,28 @@ double stepsPerEpisode(const std::vector<rl::LearningCurve>& curves, double from
   return episodes > 0.0 ? steps / episodes : 0.0;
 }
 
+// The learner's budget parameter (LearnerInfo::budgetParam: pg's updates) under `budget`; 0 where
+// the learner has none or it is not a number.
+double budgetUnits(const ExperimentConfig& config, LearningTask::Budget budget) {
+  const auto& info = rl::LearnerRegistry::global().info(config.learner);
+  const std::string& key = info.budgetParam;
+  std::string value;
+  for (const auto& spec : info.params) {
+    if (spec.name == key) value = spec.defaultValue;
+  }
+  const auto take = [&](const std::map<std::string, std::string>& params) {
+    if (const auto it = params.find(key); it != params.end()) value = it->second;
+  };
+  take(config.learnerParams);
+  if (budget == LearningTask::Budget::Validation) take(config.validation.params);
+  if (budget == LearningTask::Budget::Confirmation) take(config.validation.confirmParams);
+  try {
+    return key.empty() || value.empty() ? 0.0 : parseNumber(value, key);
+  } catch (const InputError&) {
+    return 0.0;
+  }
+}
+
 // Validation and confirmation, in wall seconds, at the given sizes.
 double validationSeconds(const CostMeasure& c, int candidates, int seeds) {
   return seeds * ((candidates + 1) * c.validationRun + c.noLearningValidation);
@@ -68,7 +92,7 @@ double gpSeconds(const CostMeasure& c, int population, int generations) {
 }  // namespace
 
 CostMeasure measureCosts(const ExperimentConfig& config, const DiscoveryOptions& options,
-                         double minSeconds) {
+                         double minSeconds, double maxSeconds) {
   CostMeasure costs;
   const auto start = std::chrono::steady_clock::now();
   const LearningTask task(config, LearningTask::Budget::Trial);
@@ -137,10 +161,33 @@ CostMeasure measureCosts(const ExperimentConfig& config, const DiscoveryOptions&
     const double each = variablesRound(*rungs[r], 8 + r, 0) / (2.0 * workers);
     costs.rungEvaluations += std::pow(config.gp.promote, static_cast<double>(r + 1)) * each;
   }
-  perRun(LearningTask::Budget::Trial, TrialFeatures::original(), 7);
+  const double trialRun = perRun(LearningTask::Budget::Trial, TrialFeatures::original(), 7);
   const double trialSteps = stepsPerEpisode(curves, 0.0);
   double endSteps = stepsPerEpisode(curves, 0.75);
-  if (config.validation.candidates > 0) {
+  // Validation's and confirmation's trainings as long as the trial's, scaled by their budgets
+  // (learner's budget parameter); measured where that fits `maxSeconds`, else estimated so.
+  const double trialUnits = budgetUnits(config, LearningTask::Budget::Trial);
+  // A longer training's part past the trial's length plays episodes as long as the trial's last
+  // quarter did.
+  const double lateGrowth = trialSteps > 0.0 ? std::max(1.0, endSteps / trialSteps) : 1.0;
+  const auto scaled = [&](LearningTask::Budget budget) {
+    const double units = budgetUnits(config, budget);
+    if (trialUnits <= 0.0 || units <= 0.0) return trialRun;
+    const double ratio = units / trialUnits;
+    return trialRun * (ratio <= 1.0 ? ratio : 1.0 + (ratio - 1.0) * lateGrowth);
+  };
+  const double validationGuess = scaled(LearningTask::Budget::Validation);
+  const double confirmationGuess =
+      config.validation.confirms() ? scaled(LearningTask::Budget::Confirmation) : 0.0;
+  // Each measured kind takes a round of 2 per worker, with and without learning.
+  const double measuring = 2.0 * workers * 2.0 * (validationGuess + confirmationGuess);
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (config.validation.candidates > 0 && elapsed + measuring > maxSeconds) {
+    costs.estimated = true;
+    costs.validationRun = costs.noLearningValidation = validationGuess;
+    costs.confirmationRun = costs.noLearningConfirmation = confirmationGuess;
+  } else if (config.validation.candidates > 0) {
     costs.validationRun = perRun(LearningTask::Budget::Validation, TrialFeatures::original(), 3);
     costs.noLearningValidation =
         perRun(LearningTask::Budget::Validation, TrialFeatures::noLearning(), 4);
@@ -162,6 +209,56 @@ CostMeasure measureCosts(const ExperimentConfig& config, const DiscoveryOptions&
   return costs;
 }
 
+double timeOneTraining(const ExperimentConfig& config, const DiscoveryOptions& options) {
+  ThreadTrialRunner threads(1);
+  TrialRunner& runner = options.trialRunner ? *options.trialRunner : threads;
+  const LearningTask task(config, LearningTask::Budget::Trial);
+  const TrialBatch batch{{TrialFeatures::original()},
+                         {{deriveSeed(config.seed, kMeasureStream, 9)}}};
+  return wallSeconds([&] { runner.run(task, batch, {}); });
+}
+
+void refuseBeforeMeasuring(const ExperimentConfig& config, double oneTraining, int workers,
+                           double seconds, const BudgetSpent& spent, const std::string& where,
+                           int runs) {
+  const double each = oneTraining / std::max(1, workers);
+  // The measurement's first round (four random genomes and two of the original variables per
+  // worker, fitness.trials trainings each) and its trial trainings, all at the original
+  // variables' cost, one after another on each worker.
+  const double measuring = oneTraining * (6.0 * config.trials + 2.0);
+  // The smallest run: population kMinPopulation, 2 generations (the second kFreshShare new), and
+  // validation and confirmation at their smallest, spread over the workers.
+  const auto& v = config.validation;
+  const auto ratio = [&](LearningTask::Budget budget) {
+    const double trial = budgetUnits(config, LearningTask::Budget::Trial);
+    const double units = budgetUnits(config, budget);
+    return trial > 0.0 && units > 0.0 ? units / trial : 1.0;
+  };
+  double trainings = (1.0 + kFreshShare) * kMinPopulation * config.trials;
+  if (v.candidates > 0) {
+    trainings += std::min(v.seeds, 10) * (std::min(v.candidates, 3) + 2) *
+                 ratio(LearningTask::Budget::Validation);
+    if (v.confirms()) {
+      trainings += std::min(v.confirmSeeds, std::max(10, 2 * v.confirmLooks)) * 3 *
+                   ratio(LearningTask::Budget::Confirmation);
+    }
+  }
+  const double least = trainings * each;
+  if (measuring + least * runs <= seconds) return;
+  CostMeasure predicted;
+  predicted.seconds = oneTraining + measuring;
+  throw InputError(
+      fmt::format("{:.0f} s{} is too short here: one training of the original variables took "
+                  "{:.1f} s, so measuring what an evaluation costs would take about {:.0f} s and "
+                  "the smallest run (population {}, 2 generations, the smallest validation) about "
+                  "{:.0f} s{}; give at least {:.0f} s{}, or the sizes",
+                  spent.budget, runs > 1 ? fmt::format(" for {} runs", runs) : "", oneTraining,
+                  measuring, kMinPopulation, least,
+                  runs > 1 ? fmt::format(", {} runs about {:.0f} s", runs, least * runs) : "",
+                  sufficientBudget(predicted, least * runs, spent), runs > 1 ? ", fewer runs" : ""),
+      where);
+}
+
 double finishSeconds(const ExperimentConfig& config, const CostMeasure& costs,
                      const BudgetSizes& sizes) {
   if (config.validation.candidates == 0) return 0.0;
@@ -169,10 +266,22 @@ double finishSeconds(const ExperimentConfig& config, const CostMeasure& costs,
          (config.validation.confirms() ? confirmationSeconds(costs, sizes.confirmSeeds) : 0.0);
 }
 
+double sufficientBudget(const CostMeasure& costs, double runsSeconds, const BudgetSpent& spent) {
+  // At a budget B the choice takes its first trainings, or at most kChoiceShare B (more only by
+  // what its prediction missed), the measurement about what it took here and kMeasureShare B
+  // more: B must hold those and the runs, with a margin for a loaded machine (one training took 7.0
+  // s, then 10.4 s on Acrobot-v1 in Python minutes apart: docs/results/budget-call/).
+  constexpr double kMargin = 1.5;
+  const double fixed = costs.seconds + runsSeconds;
+  double least = (spent.choiceFirst + fixed) / (1.0 - kMeasureShare);
+  if (spent.choice > 0.0) least = std::max(least, fixed / (1.0 - kChoiceShare - kMeasureShare));
+  return 10.0 * std::ceil(kMargin * least / 10.0);
+}
+
 BudgetSizes sizeToBudget(const ExperimentConfig& config, const CostMeasure& costs, double seconds,
-                         const std::string& where, int runs) {
+                         const std::string& where, int runs, const BudgetSpent& spent) {
   const auto& v = config.validation;
-  BudgetSizes sizes{0, 0, v.candidates, v.seeds, v.confirmSeeds, 0.0, 0.0};
+  BudgetSizes sizes{0, 0, v.candidates, v.seeds, v.confirmSeeds, 0.0, 0.0, 0.0};
   // Validation and confirmation: the config's sizes, shrunk to their share when they exceed it.
   const double share = kValidationShare * seconds;
   if (finishSeconds(config, costs, sizes) > share) {
@@ -185,6 +294,20 @@ BudgetSizes sizeToBudget(const ExperimentConfig& config, const CostMeasure& cost
     if (v.confirms()) sizes.confirmSeeds = shrink(v.confirmSeeds, std::max(10, 2 * v.confirmLooks));
   }
   sizes.finishSeconds = finishSeconds(config, costs, sizes);
+  if (config.validation.candidates > 0) {
+    // The sets, the original variables and no learning on each seed; the winner, the original
+    // variables and no learning on each confirmation seed; each as long as its budget says.
+    const auto ratio = [&](LearningTask::Budget budget) {
+      const double trial = budgetUnits(config, LearningTask::Budget::Trial);
+      const double units = budgetUnits(config, budget);
+      return trial > 0.0 && units > 0.0 ? units / trial : 1.0;
+    };
+    sizes.finishTrainings =
+        sizes.seeds * (sizes.candidates + 2) * ratio(LearningTask::Budget::Validation);
+    if (config.validation.confirms()) {
+      sizes.finishTrainings += sizes.confirmSeeds * 3 * ratio(LearningTask::Budget::Confirmation);
+    }
+  }
   // GP: the population P from P = kRatio G and P r + (G - 1) P u l = the rest (r, l: a random and
   // a learned evaluation; u: kFreshShare); the generations G that then fill the rest, which
   // the run fits to its deadline after each generation (DiscoveryOptions::deadline).
@@ -208,19 +331,19 @@ BudgetSizes sizeToBudget(const ExperimentConfig& config, const CostMeasure& cost
     const double least = gpSeconds(costs, kMinPopulation, 2) + sizes.finishSeconds;
     const std::string smallest = fmt::format(
         "the smallest run (population {}, 2 generations, {} candidates x {} validation seeds, {} "
-        "confirmation seeds) takes about {:.0f} s",
-        kMinPopulation, sizes.candidates, sizes.seeds, sizes.confirmSeeds, least);
-    const double total = seconds * runs + costs.seconds;
-    const double needed = least * runs + costs.seconds;
+        "confirmation seeds) takes about {:.0f} s{}",
+        kMinPopulation, sizes.candidates, sizes.seeds, sizes.confirmSeeds, least,
+        runs > 1 ? fmt::format(", so {} runs about {:.0f} s", runs, least * runs) : "");
+    const std::string before =
+        spent.choice > 0.0
+            ? fmt::format("{:.1f} s choosing the learner's settings and ", spent.choice)
+            : std::string();
     throw InputError(
-        runs == 1
-            ? fmt::format("{:.0f} s is too short here: {} after {:.1f} s of measuring what an "
-                          "evaluation costs; give at least {:.0f} s, or the sizes",
-                          total, smallest, costs.seconds, std::ceil(needed))
-            : fmt::format("{:.0f} s for {} runs is too short here: {}, so {} runs take "
-                          "about {:.0f} s with the {:.1f} s of measuring what an evaluation "
-                          "costs; give at least {:.0f} s, fewer runs, or the sizes",
-                          total, runs, smallest, runs, needed, costs.seconds, std::ceil(needed)),
+        fmt::format("{:.0f} s{} is too short here: {}, after {}{:.1f} s of measuring what an "
+                    "evaluation costs; give at least {:.0f} s{}, or the sizes",
+                    spent.budget, runs > 1 ? fmt::format(" for {} runs", runs) : "", smallest,
+                    before, costs.seconds, sufficientBudget(costs, least * runs, spent),
+                    runs > 1 ? ", fewer runs" : ""),
         where);
   }
   return sizes;
@@ -256,6 +379,7 @@ std::string budgetJson(double budget, const CostMeasure& costs, const BudgetSize
                              {"predicted_seconds_per_run", sizes.predictedSeconds},
                              {"validation_and_confirmation_seconds", sizes.finishSeconds}}}};
   if (costs.rungEvaluations > 0) j["measured"]["rung_evaluations"] = costs.rungEvaluations;
+  if (costs.estimated) j["measured"]["trainings_estimated_from_the_trial"] = true;
   return j.dump();
 }
 
@@ -266,7 +390,9 @@ std::string budgetText(double budget, const CostMeasure& costs, const BudgetSize
       "original variables), a validation training {:.3g} s, a confirmation training {:.3g} s on "
       "this machine (measured in {:.1f} s); chosen: population {}, generations {} (fitted to the "
       "budget after each generation), validation {} candidates x {} seeds, confirmation {} "
-      "seeds{} (predicted {:.0f} s{}); written to config.toml\n",
+      "seeds{} (predicted {:.0f} s{}); written to config.toml. These sizes come from the clock: "
+      "another call with the same seed may size the run differently; --replay DIR "
+      "(gpfd.evolve(replay=DIR)) reruns this run exactly\n",
       budget, costs.randomEvaluation, costs.learnedEvaluation, costs.validationRun,
       costs.confirmationRun, costs.seconds, sizes.population, sizes.generations, sizes.candidates,
       sizes.seeds, sizes.confirmSeeds, runs > 1 ? fmt::format(" for each of {} runs", runs) : "",

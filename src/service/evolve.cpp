@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <limits>
 #include <string_view>
 
 #include "gpfd/expr/genome.hpp"
 #include "gpfd/run/learner_choice.hpp"
+#include "gpfd/run/replay.hpp"
 #include "gpfd/run/stored_config.hpp"
 #include "gpfd/run/time_budget.hpp"
 #include "gpfd/service/configs.hpp"
@@ -114,32 +116,56 @@ std::optional<run::ExperimentConfig> expectedConfig(const EvolveRequest& request
 }
 
 // Chooses the learner's settings of learner.choose on the task (run/learner_choice.hpp), with
-// the trial runner the run will use; says what it chose and records it for run.json. `spent`:
-// the seconds it took.
+// the trial runner the run will use, within run::kChoiceShare of a time budget; says what it
+// chose and records it for run.json, and what it took in `spent`. InputError where nothing
+// learns (run::LearnerChoice::nothingLearns).
 run::ExperimentConfig chooseLearner(const run::ExperimentConfig& config,
-                                    run::DiscoveryOptions& options, double& spent,
+                                    run::DiscoveryOptions& options, run::BudgetSpent& spent,
                                     EvolveProgress& progress) {
   run::ThreadTrialRunner threads(options.threads);
   run::TrialRunner& runner = options.trialRunner ? *options.trialRunner : threads;
-  const auto choice = run::chooseLearnerSettings(config, runner);
+  const double allowance = config.timeBudget > 0.0 ? run::kChoiceShare * config.timeBudget
+                                                   : std::numeric_limits<double>::infinity();
+  progress.preparing(fmt::format(
+      "choosing the learner's settings on the task: {} alternatives, each training the original "
+      "variables and no learning on {} seeds{}{}",
+      run::learnerCandidates(config).size(), config.choiceSeeds,
+      config.choiceRandomSets > 0
+          ? fmt::format(" and {} random feature sets on 3", config.choiceRandomSets)
+          : std::string(),
+      config.timeBudget > 0.0 ? fmt::format(", within {:.0f} s of the budget", allowance)
+                              : std::string()));
+  const auto choice = run::chooseLearnerSettings(config, runner, allowance, options.threads);
   progress.preparedRun(run::learnerChoiceText(choice));
+  if (choice.nothingLearns) {
+    throw InputError(run::nothingLearnsText(choice), "learner.choose (" + config.env + ")");
+  }
   options.learnerChoiceJson = run::learnerChoiceJson(choice);
-  spent = choice.seconds;
+  spent.choice = choice.seconds;
+  spent.choiceFirst = choice.firstSeconds;
   return run::withLearnerChoice(config, choice);
 }
 
 // Sizes `config` to its time budget (run/time_budget.hpp), measuring as the run will evaluate,
-// `spent` seconds of it gone already; says what it chose and records it for run.json.
-run::ExperimentConfig sizeToBudget(const run::ExperimentConfig& config, int runs, double spent,
-                                   run::DiscoveryOptions& options, double& perRunSeconds,
-                                   EvolveProgress& progress) {
+// `spent` of it gone already; says what it chose and records it for run.json.
+run::ExperimentConfig sizeToBudget(const run::ExperimentConfig& config, int runs,
+                                   const run::BudgetSpent& spent, run::DiscoveryOptions& options,
+                                   double& perRunSeconds, EvolveProgress& progress) {
   const std::string where = "time_budget (--time-budget)";
   if (options.processes > 1) {
     throw InputError("a time budget is not measured under MPI: give the sizes instead", where);
   }
-  const double left = config.timeBudget - spent;
-  const auto costs = run::measureCosts(config, options, run::kMeasureShare * config.timeBudget);
-  const auto sizes = run::sizeToBudget(config, costs, (left - costs.seconds) / runs, where, runs);
+  double left = config.timeBudget - spent.choice;
+  progress.preparing(
+      fmt::format("measuring what an evaluation and a training cost here (at least {:.0f} s)",
+                  std::ceil(run::kMeasureShare * config.timeBudget)));
+  const double one = run::timeOneTraining(config, options);
+  left -= one;
+  run::refuseBeforeMeasuring(config, one, options.threads, left, spent, where, runs);
+  const auto costs = run::measureCosts(config, options, run::kMeasureShare * config.timeBudget,
+                                       run::kMeasureMaxShare * config.timeBudget);
+  const auto sizes =
+      run::sizeToBudget(config, costs, (left - costs.seconds) / runs, where, runs, spent);
   progress.preparedRun(run::budgetText(config.timeBudget, costs, sizes, runs));
   options.timeBudgetJson = run::budgetJson(config.timeBudget, costs, sizes);
   // Run r of a set ends by r shares of the budget after the measurement.
@@ -148,6 +174,7 @@ run::ExperimentConfig sizeToBudget(const run::ExperimentConfig& config, int runs
                      std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                          std::chrono::duration<double>(perRunSeconds));
   options.finishSeconds = sizes.finishSeconds;
+  options.finishTrainings = sizes.finishTrainings;
   return run::withSizes(config, sizes);
 }
 
@@ -194,6 +221,64 @@ EvolveResult resume(const EvolveRequest& request, run::DiscoveryOptions options,
   return result;
 }
 
+// Starts (or continues: openRun) the single run of `config` in the directory claimed by `lock`
+// and runs it. One that fails (or is interrupted) before its first generation ends leaves no
+// directory that the call created.
+EvolveResult runSingle(const run::ExperimentConfig& config, const run::DiscoveryOptions& options,
+                       DirectoryLock& lock, EvolveProgress& progress,
+                       const std::atomic<bool>& stop) {
+  std::unique_ptr<run::Discovery> discovery;
+  try {
+    discovery = openRun(config, options, std::nullopt);
+  } catch (...) {
+    lock.removeCreatedDirectory();  // Nothing half-made is left behind.
+    throw;
+  }
+  EvolveResult result{options.outDir, false, {}};
+  try {
+    result.finished = runOne(*discovery, options.outDir, "", 1, options.outDir, progress, stop);
+  } catch (...) {
+    // Stopped (an error, an interruption) before its first generation ended: nothing to keep.
+    if (discovery->history().empty()) lock.removeCreatedDirectory();
+    throw;
+  }
+  if (result.finished) result.outcomes.push_back(run::outcomeOf(*discovery, 1));
+  return result;
+}
+
+// A fresh run with the config, sizes and learner settings of the finished run in
+// request.replay, its run.json's measurement and choice copied (run/replay.hpp).
+EvolveResult replay(const EvolveRequest& request, run::DiscoveryOptions options,
+                    EvolveProgress& progress, const std::atomic<bool>& stop) {
+  const std::string& dir = request.replay;
+  if (!request.config.empty() || !request.overrides.empty() || request.runs ||
+      request.generations || !request.resume.empty()) {
+    throw InputError(
+        "a replay runs the stored config and sizes again: only the threads (or workers) and the "
+        "results directory may be given",
+        "replay " + dir);
+  }
+  const auto source = run::readFinishedRun(dir, kVersion);
+  const run::ExperimentConfig& config = source.config;
+  options.learnerChoiceJson = source.learnerChoiceJson;
+  options.timeBudgetJson = source.timeBudgetJson;
+  if (options.envJson.empty()) options.envJson = source.envJson;
+  options.replayOf = fs::absolute(dir).lexically_normal().string();
+  std::string name = fs::path(dir).lexically_normal().filename().string();
+  if (name.empty()) name = fs::path(dir).lexically_normal().parent_path().filename().string();
+  name = request.outName.empty() ? name + "-replay" : request.outName;
+  if (!run::isRunName(name)) name = config.name + "-replay";
+  progress.preparedRun(fmt::format(
+      "replaying {}: population {}, generations {}, validation {} candidates x {} seeds, "
+      "confirmation {} seeds{}, as the run used them\n",
+      dir, config.gp.population, config.gp.generations, config.validation.candidates,
+      config.validation.seeds, config.validation.confirmSeeds,
+      source.sizesFromClock ? " (chosen by its time budget)" : ""));
+  DirectoryLock lock = claimResultsDirectory(request.out, name, run::refuseExistingRuns);
+  options.outDir = lock.directory();
+  return runSingle(config, options, lock, progress, stop);
+}
+
 }  // namespace
 
 // The run in options.outDir: resumed from its checkpoint once it has been started there
@@ -219,6 +304,7 @@ EvolveResult evolve(const EvolveRequest& request, EvolveProgress& progress,
   options.trialRunner = request.trialRunner;
   options.processes = request.processes;
   options.envJson = request.envJson;
+  if (!request.replay.empty()) return replay(request, options, progress, stop);
   if (!request.resume.empty()) return resume(request, options, progress, stop);
 
   auto overrides = request.overrides;
@@ -230,7 +316,8 @@ EvolveResult evolve(const EvolveRequest& request, EvolveProgress& progress,
   // comes from the config (user-env's default), unless the budget is given too.
   if (givesSizes(request) && !givesKey(overrides, "time_budget")) config.timeBudget = 0.0;
   const int runs = request.runs.value_or(1);
-  double spent = 0.0;          // Seconds of the budget spent choosing the learner's settings.
+  run::BudgetSpent spent;  // What choosing the learner's settings took.
+  spent.budget = config.timeBudget;
   double perRunSeconds = 0.0;  // A time budget's share of each run.
   if (run::choosesLearner(config)) config = chooseLearner(config, options, spent, progress);
   if (config.timeBudget > 0.0) {
@@ -251,25 +338,7 @@ EvolveResult evolve(const EvolveRequest& request, EvolveProgress& progress,
   // A directory holding a run or a set is resumed, never started over, even with force.
   DirectoryLock lock = claimResultsDirectory(request.out, name, run::refuseExistingRuns);
   options.outDir = lock.directory();
-  if (runs == 1) {
-    std::unique_ptr<run::Discovery> discovery;
-    try {
-      discovery = openRun(config, options, std::nullopt);
-    } catch (...) {
-      lock.removeCreatedDirectory();  // Nothing half-made is left behind.
-      throw;
-    }
-    EvolveResult result{options.outDir, false, {}};
-    try {
-      result.finished = runOne(*discovery, options.outDir, "", 1, options.outDir, progress, stop);
-    } catch (...) {
-      // Stopped (an error, an interruption) before its first generation ended: nothing to keep.
-      if (discovery->history().empty()) lock.removeCreatedDirectory();
-      throw;
-    }
-    if (result.finished) result.outcomes.push_back(run::outcomeOf(*discovery, 1));
-    return result;
-  }
+  if (runs == 1) return runSingle(config, options, lock, progress, stop);
   run::validate(config);
   createDirectories(options.outDir, "results directory");
   writeFileAtomically(options.outDir + "/config.toml", run::formatExperimentConfig(config));

@@ -58,8 +58,8 @@ void EvolveText::runStarted(const run::Discovery& discovery, const std::string& 
       const double elapsed =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       if (kind == run::RunStage::Generations) {
-        o_.out(fmt::format("\r\033[K  {}generation {}: {}/{} evaluated, {}", label,
-                           discovery.history().size(), stage.done, stage.total,
+        o_.out(fmt::format("\r\033[K  {}generation {} of {}: {}/{} evaluated, {}", label,
+                           discovery.history().size(), stage.generations, stage.done, stage.total,
                            formatDuration(elapsed)));
       } else {
         o_.out(fmt::format("\r\033[K  {}{}: {}/{} trainings done, {}", label, run::stageName(kind),
@@ -206,6 +206,10 @@ void EvolveText::setFinished(const std::vector<run::RunOutcome>& outcomes, const
 
 void EvolveText::preparedRun(const std::string& text) {
   if (!o_.quiet) o_.out(text);
+}
+
+void EvolveText::preparing(const std::string& phase) {
+  if (!o_.quiet && !o_.outcomeOnly) o_.out("gpfd evolve: " + phase + "\n");
 }
 
 void EvolveText::alreadyComplete(const std::string& dir, int generations) {

@@ -97,7 +97,9 @@ def test_callback_sees_each_generation_and_can_stop_the_run(tmp_path):
         "cache_hits",
         "seconds",
         "best_features",
+        "generations",
     }
+    assert seen[0]["generations"] == 5  # The run's, as the config (or a deadline) sets them.
     assert isinstance(seen[1]["best_features"], gpfd.FeatureSet)
     assert (
         seen[1]["best_features"].to_text().splitlines()[-1]

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "cli_helpers.hpp"
@@ -380,6 +381,67 @@ TEST(LearnerChoice, AnAssessmentsParamsWinOverTheChoice) {
   EXPECT_EQ(printed.find("learner settings chosen"), std::string::npos) << printed;
   EXPECT_EQ(result.config.learnerParams.at("rprop"), "small");
   EXPECT_EQ(result.config.assessParams.at("updates"), "2");
+}
+
+}  // namespace
+}  // namespace gpfd::testing
+
+namespace gpfd::testing {
+namespace {
+
+// The no-learning reference trained beside the original variables (on the same seeds), and a
+// time allowance that cuts the choice to its first candidate, said and recorded.
+TEST(LearnerChoice, TrainsNoLearningBesideAndFitsAnAllowance) {
+  const auto config = service::loadConfig(choosingConfig(), {});
+  run::ThreadTrialRunner threads(2);
+  const auto whole = run::chooseLearnerSettings(config, threads);
+  ASSERT_EQ(whole.noLearningMeans.size(), 2u);
+  EXPECT_FALSE(whole.nothingLearns);  // Cart-pole learns with either step size.
+  EXPECT_EQ(whole.cut, run::LearnerChoice::Cut::None);
+  EXPECT_GT(whole.firstSeconds, 0.0);
+  const auto json = nlohmann::json::parse(run::learnerChoiceJson(whole));
+  EXPECT_FALSE(json.contains("cut"));
+  EXPECT_EQ(json["tried"][0]["no_learning"].get<double>(), whole.noLearningMeans[0]);
+  // No time at all: the first training only, the first candidate kept; its score is that
+  // training's in the whole choice (the batches split, the curves the same).
+  const auto cut = run::chooseLearnerSettings(config, threads, 0.0, 2);
+  EXPECT_EQ(cut.cut, run::LearnerChoice::Cut::All);
+  ASSERT_EQ(cut.candidates.size(), 1u);
+  EXPECT_EQ(cut.chosen, 0u);
+  ASSERT_EQ(cut.scores[0].size(), 1u);
+  EXPECT_EQ(cut.scores[0][0], whole.scores[0][0]);
+  EXPECT_FALSE(cut.nothingLearns);
+  EXPECT_NE(run::learnerChoiceText(cut).find("NOT chosen"), std::string::npos);
+  EXPECT_EQ(nlohmann::json::parse(run::learnerChoiceJson(cut))["cut"], "all");
+}
+
+// Where the original variables and no learning score alike with every candidate (a learner of
+// no updates learns nothing), the choice says so, and a run stops before GP with what to change.
+TEST(LearnerChoice, NothingLearnsStopsTheRun) {
+  const auto config = service::loadConfig(
+      choosingConfig(), {"learner.params.updates=0", "validation.confirm_params.updates=0"});
+  run::ThreadTrialRunner threads(2);
+  const auto choice = run::chooseLearnerSettings(config, threads);
+  ASSERT_TRUE(choice.nothingLearns);
+  EXPECT_EQ(choice.means, choice.noLearningMeans);
+  EXPECT_NE(run::nothingLearnsText(choice).find("nothing learns here"), std::string::npos);
+  const auto dir = freshDir("choose-nothing");
+  service::EvolveRequest request;
+  request.config = choosingConfig();
+  request.overrides = {"learner.params.updates=0", "validation.confirm_params.updates=0"};
+  request.out = {dir, false, "--out"};
+  Said progress;
+  const std::atomic<bool> go{false};
+  try {
+    service::evolve(request, progress, go);
+    FAIL() << "a run where nothing learns went on";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("nothing learns here"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir));  // Stopped before anything was written.
+  // A learner that learns is not stopped (the first test's config, which trains).
+  EXPECT_FALSE(
+      run::chooseLearnerSettings(service::loadConfig(choosingConfig(), {}), threads).nothingLearns);
 }
 
 }  // namespace

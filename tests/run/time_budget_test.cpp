@@ -151,7 +151,9 @@ TEST(TimeBudget, ABudgetTooShortForTheSmallestRunIsRefused) {
   const std::string what = e.what();
   ASSERT_FALSE(what.empty()) << "a 0.05 s budget was accepted";
   EXPECT_EQ(e.where(), "time_budget (--time-budget)");
-  EXPECT_NE(what.find("is too short here: the smallest run"), std::string::npos) << what;
+  // Refused before measuring (one training predicts it) or after, naming the smallest run.
+  EXPECT_NE(what.find("is too short here: "), std::string::npos) << what;
+  EXPECT_NE(what.find("the smallest run"), std::string::npos) << what;
   EXPECT_NE(what.find("give at least"), std::string::npos) << what;
 }
 

@@ -108,8 +108,8 @@ TEST(EvolveService, AStoppedRunsFeaturesAreWhatTheLearnerSawAndSaySo) {
 
   const auto config = service::loadConfig(request.config, request.overrides);
   const run::LearningTask task(config, run::LearningTask::Budget::Trial);
-  auto resumed = run::Discovery::resume({dir, 1, kVersion, "", {}, 1, {}, "", {}, 0.0, "", ""},
-                                        std::nullopt, std::nullopt);
+  auto resumed = run::Discovery::resume(
+      {dir, 1, kVersion, "", {}, 1, {}, "", {}, 0.0, "", "", "", 0.0}, std::nullopt, std::nullopt);
   const auto& best = resumed->history().at(0).bestGenome;
   for (const std::string name : {"best.features", "best/generation-0000.features"}) {
     const auto file = expr::readFeaturesFile(dir + "/" + name);
@@ -149,7 +149,7 @@ TEST(EvolveService, TheRunStageSaysWhatRunsAndHowFar) {
         {"gp.generations=2", "validation.candidates=3", "validation.seeds=4",
          "validation.confirm_seeds=" + std::to_string(confirmSeeds), "validation.confirm_looks=1"});
     const auto discovery = run::Discovery::start(
-        config, {freshDir(name), 1, kVersion, "", {}, 1, {}, "", {}, 0.0, "", ""});
+        config, {freshDir(name), 1, kVersion, "", {}, 1, {}, "", {}, 0.0, "", "", "", 0.0});
     std::vector<run::RunStage> seen;
     std::vector<long> evaluated;
     const std::atomic<bool> stop{false};

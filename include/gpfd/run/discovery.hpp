@@ -3,7 +3,10 @@
 //
 // Results directory:
 //   config.toml              the fully resolved config
-//   run.json                 seed, version, threads (and MPI processes, when above 1)
+//   run.json                 seed, version, threads (and MPI processes, when above 1); with a
+//                            time budget what it measured and chose, and "sizes": the sizes
+//                            that came from the clock, the generations as fitted to the
+//                            deadline (what `--replay` reruns); "replay_of" in a replay
 //   generations.csv          one row per generation
 //   best/generation-NNNN.features   the best genome of each generation, as the learner saw it
 //                            (`# status: not validated`)
@@ -68,6 +71,13 @@ struct DiscoveryOptions {
   // (gpfd.evolve's fingerprint of an environment stepped in Python, which a resume checks);
   // empty: none.
   std::string envJson;
+  // The run this one replays (run/replay.hpp): run.json's "replay_of"; empty: none.
+  std::string replayOf;
+  // With a deadline: validation's and confirmation's trainings as a multiple of one of the GP's
+  // trial trainings; the time kept free for them is at least this many times the cost of a trial
+  // training in the last generations (where the sets learn as the hall of fame will), not only
+  // `finishSeconds`, measured before any set learned.
+  double finishTrainings = 0.0;
 };
 
 // The evaluators of successive halving's longer rungs (fitnessRungs), shortest first: made by
@@ -89,6 +99,9 @@ struct RunStage {
   Kind kind = Generations;
   int done = 0;
   int total = 0;
+  // The run's generations as the config holds them now (a time budget's deadline refits them
+  // after each generation).
+  int generations = 0;
 };
 const char* stageName(RunStage::Kind kind);
 

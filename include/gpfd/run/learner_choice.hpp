@@ -10,10 +10,13 @@
 // this task, and with random sets a learner that makes nothing of any feature (one that stops
 // exploring) is not chosen for what it does with the raw variables alone (docs/discovery.md, "The
 // learner's settings chosen on the task"). The choice is a pure function of the config and its
-// seed; the resolved config stores the values chosen and no choice, so a resume, or that config run
-// again, gives the same run.
+// seed; where no candidate makes the original variables or the random sets score other than the
+// no-learning reference (trained beside them on the same seeds), the run stops before GP with
+// what to change (nothingLearnsText); the resolved config stores the values chosen and no choice,
+// so a resume, or that config run again, gives the same run.
 #pragma once
 
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -41,6 +44,11 @@ struct LearnerChoice {
   // With learner.choose_random_sets: each one's mean of its best quarter of the random sets.
   std::vector<double> randomSetsBest;
   std::vector<double> merits;  // What the choice compares: the mean, or the random sets' if higher.
+  std::vector<double> noLearningMeans;  // The no-learning reference's, with each, on the seeds.
+  // With every candidate, the original variables' mean and the random sets' equal the
+  // no-learning mean (to 1e-6 of their scale): the learner learns nothing here
+  // (nothingLearnsText).
+  bool nothingLearns = false;
   int randomSets = 0;
   // The best mean, the first listed of equal ones; with learner.choose_significance, the first
   // listed that the best does not beat significantly.
@@ -48,11 +56,23 @@ struct LearnerChoice {
   int seeds = 0;
   bool confirmation = true;  // Trained as the confirmation trains (else as the validation).
   double seconds = 0.0;      // Wall time of the trainings.
+  // Where the allowance cut it: the random sets left out, every candidate but the first, or all
+  // but the first candidate's first training (no no-learning reference then: its mean -inf).
+  enum class Cut { None, RandomSets, Candidates, All } cut = Cut::None;
+  double firstSeconds = 0.0;      // The first training (the original variables, first seed).
+  double predictedSeconds = 0.0;  // The whole choice's, predicted from it.
 };
 
 // Trains the original variables with each candidate on config.choiceSeeds seeds of a stream of
 // their own (never the run's), on `runner`, and picks the best. Needs learner.choose.
-LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner& runner);
+// `allowance`: wall seconds the choice may take (a time budget's share). Its first training is
+// timed, and where the rest, spread over `workers`, would pass the allowance the random sets are
+// left out, or where that is not enough the first candidate is kept without trying the others, or
+// where even its trainings do not fit, without more trainings (said, and recorded:
+// LearnerChoice::cut). The choice then depends on the clock; config.toml records what it chose.
+LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner& runner,
+                                    double allowance = std::numeric_limits<double>::infinity(),
+                                    int workers = 1);
 
 // `config` with the chosen values in learner.params and no choice left.
 ExperimentConfig withLearnerChoice(ExperimentConfig config, const LearnerChoice& choice);
@@ -61,5 +81,7 @@ ExperimentConfig withLearnerChoice(ExperimentConfig config, const LearnerChoice&
 // "learner_choice": no timing, so that a run's files are the same bytes on any machine).
 std::string learnerChoiceText(const LearnerChoice& choice);
 std::string learnerChoiceJson(const LearnerChoice& choice);
+// Why a choice where nothing learns stops the run, and what to change.
+std::string nothingLearnsText(const LearnerChoice& choice);
 
 }  // namespace gpfd::run

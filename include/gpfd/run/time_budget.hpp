@@ -7,6 +7,7 @@
 // budget: a resume, or the resolved config run again, gives the same run.
 #pragma once
 
+#include <limits>
 #include <string>
 
 #include "gpfd/run/discovery.hpp"
@@ -32,15 +33,36 @@ struct CostMeasure {
   // (promote^r); 0 without it.
   double rungEvaluations = 0.0;
   double seconds = 0.0;  // The measurement's own wall time.
+  // The validation's and confirmation's trainings estimated from the trial's (scaled by the
+  // learner's budget parameter) where measuring them would pass measureCosts' maxSeconds.
+  bool estimated = false;
 };
 
 // Measures on fresh seeds of their own (never the run's), with the evaluator and trial runner the
 // run will use (`options`: its factory, or threads); the evaluations are measured in rounds until
 // `minSeconds` have passed.
+// `maxSeconds`: where measuring the validation's and confirmation's trainings would end the
+// measurement past it, they are estimated from the trial's instead (CostMeasure::estimated).
 CostMeasure measureCosts(const ExperimentConfig& config, const DiscoveryOptions& options,
-                         double minSeconds);
-// The share of a budget spent measuring evaluations at least (kMeasureShare x budget).
+                         double minSeconds,
+                         double maxSeconds = std::numeric_limits<double>::infinity());
+// The share of a budget spent measuring evaluations at least (kMeasureShare x budget), and at
+// most, trainings included, where they are not estimated (kMeasureMaxShare x budget).
 inline constexpr double kMeasureShare = 0.02;
+inline constexpr double kMeasureMaxShare = 0.1;
+// The share of a budget that the learner's choice (learner.choose) may take: its first
+// candidate's trainings size the rest (run/learner_choice.hpp).
+inline constexpr double kChoiceShare = 0.25;
+
+// What a budget's call spent before sizing: for a refusal that names a budget that works.
+struct BudgetSpent {
+  double budget = 0.0;       // The whole budget, seconds.
+  double choice = 0.0;       // Choosing the learner's settings (0: no choice).
+  double choiceFirst = 0.0;  // Its first candidate's trainings, which it always makes.
+};
+// A budget (a multiple of 10 s) that holds the choice, the measurement and `runsSeconds` of
+// runs at their smallest sizes, with a margin: what a refusal names.
+double sufficientBudget(const CostMeasure& costs, double runsSeconds, const BudgetSpent& spent);
 
 // The sizes chosen for a budget, and the times they are predicted to take.
 struct BudgetSizes {
@@ -49,6 +71,8 @@ struct BudgetSizes {
   int candidates = 0, seeds = 0, confirmSeeds = 0;
   double predictedSeconds = 0.0;  // Of one run at the generations expected.
   double finishSeconds = 0.0;     // Of its validation and confirmation.
+  // Their trainings as a multiple of a GP trial's (DiscoveryOptions::finishTrainings).
+  double finishTrainings = 0.0;
 };
 
 // The minimum population, and the population-to-generations ratio aimed at (the paper's 100 x
@@ -63,11 +87,22 @@ inline constexpr double kValidationShare = 0.3;
 // sets the population, the deadline ends the generations.
 inline constexpr double kFreshShare = 0.65;
 
+// Wall seconds of one trial training of the original variables (on the run's trial runner, else
+// one thread): what refuseBeforeMeasuring predicts from.
+double timeOneTraining(const ExperimentConfig& config, const DiscoveryOptions& options);
+// InputError at `where`, naming a budget that works (sufficientBudget), where the measurement
+// and `runs` smallest runs, predicted from `oneTraining` (each training at its cost, spread over
+// `workers`), cannot fit the `seconds` left: on a slow task the refusal comes before the
+// measurement, which alone may take longer than the budget.
+void refuseBeforeMeasuring(const ExperimentConfig& config, double oneTraining, int workers,
+                           double seconds, const BudgetSpent& spent, const std::string& where,
+                           int runs);
+
 // Sizes for each of `runs` runs of `seconds` (the measurement's time already spent), from
 // `config`'s own sizes as the upper bound of the validation's. InputError at `where` when not even
-// the smallest run fits, naming the whole budget that would.
+// the smallest run fits, naming a whole budget that would (sufficientBudget), `spent` included.
 BudgetSizes sizeToBudget(const ExperimentConfig& config, const CostMeasure& costs, double seconds,
-                         const std::string& where, int runs = 1);
+                         const std::string& where, int runs, const BudgetSpent& spent);
 // The predicted seconds of validation and confirmation at `sizes`.
 double finishSeconds(const ExperimentConfig& config, const CostMeasure& costs,
                      const BudgetSizes& sizes);

@@ -21,9 +21,13 @@ struct EvolveRequest {
   std::vector<std::string> overrides;  // key=value (--set; the flags --env, --seed, ... as keys).
   OutputChoice out;                    // The results directory (default results/<name>).
   std::string resume;                  // Continue the run or set of runs in this directory.
-  std::optional<int> generations;      // Extends a resumed run (a fresh one: an override).
-  std::optional<int> runs;             // Independent runs (a set); default 1.
-  int threads = 0;                     // 0: all cores. Never changes results.
+  // Rerun the finished run in this directory with the sizes and learner settings it used
+  // (run/replay.hpp), into a fresh directory (`out`, default results/<its name>-replay); no
+  // overrides, runs or generations.
+  std::string replay;
+  std::optional<int> generations;  // Extends a resumed run (a fresh one: an override).
+  std::optional<int> runs;         // Independent runs (a set); default 1.
+  int threads = 0;                 // 0: all cores. Never changes results.
   // How the evaluations are spread (MPI, Python worker processes); empty: threads.
   run::EvaluatorFactory makeEvaluator;
   // Where validation and confirmation train (Python worker processes); empty: threads.
@@ -58,6 +62,9 @@ class EvolveProgress {
   // What was measured and chosen before any run, a line of text each: the learner's settings
   // chosen on the task (learner.choose), a time budget's measurement and the sizes it chose.
   virtual void preparedRun(const std::string& /*text*/) {}
+  // A stage before any run starts, as it begins (a line of text without its end): choosing the
+  // learner's settings, measuring what an evaluation costs.
+  virtual void preparing(const std::string& /*phase*/) {}
 };
 
 struct EvolveResult {

@@ -43,6 +43,7 @@ class EvolveText final : public EvolveProgress {
   void setFinished(const std::vector<run::RunOutcome>& outcomes, const std::string& dir) override;
   void alreadyComplete(const std::string& dir, int generations) override;
   void preparedRun(const std::string& text) override;
+  void preparing(const std::string& phase) override;
 
  private:
   void stopStatus();
