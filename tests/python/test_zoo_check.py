@@ -94,7 +94,8 @@ def test_a_tiny_run_on_cartpole(tmp_path):
     assert summary[0]["gp_seconds"] == "180.7"  # native-defaults' summary.csv, CartPole-v1
     table = (tmp_path / "README-table.md").read_text()
     assert "| CartPole-v1 | 1500 (200000) | 180.7 | 500 +- 0 (0.05M)" in table
-    assert table.count("| set 1 ") == 2
+    assert "| set 1 beside | set 1 + the observation |" in table
+    assert "| set 1 alone | (x2 - 0.001465) * 9.975 ; " in table  # The set's first expression.
     # A rerun reuses the scores: no training, the same rows.
     again = zoo.main(
         [
