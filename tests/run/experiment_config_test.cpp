@@ -38,8 +38,9 @@ TEST(ExperimentConfig, ShippedConfigsGiveTheEarlierOperatorRatesBitForBit) {
   int configs = 0;
   for (const auto& entry : std::filesystem::directory_iterator(GPFD_SOURCE_DIR "/configs")) {
     if (entry.path().extension() != ".toml") continue;
-    // user-env names no environment of its own: the one a run is given replaces it.
-    const bool forAnyEnv = entry.path().stem() == "user-env";
+    // user-env and user-env-ars name no environment of their own: the one a run is given
+    // replaces it.
+    const bool forAnyEnv = entry.path().stem().string().starts_with("user-env");
     const auto config = loadExperimentConfig(
         entry.path().string(),
         forAnyEnv ? std::vector<std::string>{"env.name=cartpole"} : std::vector<std::string>{});
