@@ -52,14 +52,19 @@ def test_a_gymnasium_id_evolves_for_two_generations_in_worker_processes(tmp_path
 
 
 class PidRecorder(gym.Wrapper):
-    """Pendulum that notes which process made it. In a worker, an instance waits (60 s at most)
-    until a second worker has made one too, so that the test does not depend on how fast the
-    workers start: one worker alone could otherwise take every task of a short generation."""
+    """Pendulum that notes which process made it. In a worker, the first instance waits (20 s at
+    most) until a second worker has made one too, so that the test does not depend on how fast
+    the workers start: one worker alone could otherwise take every task of a short generation.
+    Once per process: a run's phases of one task (the learner choice's first, timed, training)
+    would otherwise wait the whole time at every instance."""
+
+    waited = False
 
     def __init__(self, directory, parent):
         super().__init__(gym.make("Pendulum-v1"))
         Path(directory, str(os.getpid())).touch()
-        deadline = time.monotonic() + 60
+        deadline = time.monotonic() + (0 if PidRecorder.waited else 20)
+        PidRecorder.waited = True
         while os.getpid() != parent and time.monotonic() < deadline:
             if len({p.name for p in Path(directory).iterdir()} - {str(parent)}) >= 2:
                 break
