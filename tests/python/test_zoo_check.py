@@ -57,22 +57,9 @@ def test_the_original_variables_alone_are_the_raw_observation():
 
 
 def test_a_tiny_run_on_cartpole(tmp_path):
-    rows = zoo.main(
-        [
-            "--sets",
-            str(STUDY),
-            "--tasks",
-            "CartPole-v1",
-            "--seeds",
-            "2",
-            "--fraction",
-            "0.0075",
-            "--max-sets",
-            "1",
-            "--out",
-            str(tmp_path),
-        ]
-    )
+    tiny = ["--sets", str(STUDY), "--tasks", "CartPole-v1", "--seeds", "2", "--fraction", "0.0075"]
+    tiny += ["--max-sets", "1", "--out", str(tmp_path)]
+    rows = zoo.main(tiny)
     assert [r["configuration"] for r in rows] == ["raw", "set 1 alone", "set 1 beside"]
     with open(tmp_path / "scores.csv", newline="") as f:
         scores = list(csv.DictReader(f))
@@ -98,21 +85,6 @@ def test_a_tiny_run_on_cartpole(tmp_path):
     assert "| set 1 beside | set 1 + the observation |" in table
     assert "| set 1 alone | (x2 - 0.001465) * 9.975 ; " in table  # The set's first expression.
     # A rerun reuses the scores: no training, the same rows.
-    again = zoo.main(
-        [
-            "--sets",
-            str(STUDY),
-            "--tasks",
-            "CartPole-v1",
-            "--seeds",
-            "2",
-            "--fraction",
-            "0.0075",
-            "--max-sets",
-            "1",
-            "--out",
-            str(tmp_path),
-        ]
-    )
+    again = zoo.main(tiny)
     assert again == rows
     assert len((tmp_path / "scores.csv").read_text().splitlines()) == 7
