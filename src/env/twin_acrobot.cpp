@@ -157,10 +157,10 @@ class AcrobotTwin final : public GymnasiumTwin {
         observation_[2 * i + 1] = numpy_trig::sinOrCos(angle, false);
       } else {
         const CosSin trig = cosSinOfState(i);
-        observation_[2 * i] = static_cast<float>(trig.cos);
-        observation_[2 * i + 1] = static_cast<float>(trig.sin);
+        observation_[2 * i] = trig.cos;
+        observation_[2 * i + 1] = trig.sin;
       }
-      observation_[4 + i] = static_cast<float>(dynamics_[2 + i]);
+      observation_[4 + i] = dynamics_[2 + i];
     }
   }
 

@@ -96,7 +96,7 @@ class CartPoleTwin final : public GymnasiumTwin {
   }
 
   void observe() {
-    for (std::size_t i = 0; i < 4; ++i) observation_[i] = static_cast<float>(dynamics_[i]);
+    for (std::size_t i = 0; i < 4; ++i) observation_[i] = dynamics_[i];
   }
 
   CartPoleConfig config_;

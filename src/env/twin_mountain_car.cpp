@@ -56,7 +56,7 @@ class MountainCarBase : public GymnasiumTwin {
     observe();
   }
   void observe() {
-    for (std::size_t i = 0; i < 2; ++i) observation_[i] = static_cast<float>(dynamics_[i]);
+    for (std::size_t i = 0; i < 2; ++i) observation_[i] = dynamics_[i];
   }
 };
 

@@ -108,9 +108,9 @@ class PendulumTwin final : public GymnasiumTwin {
     double cosine = 0.0;
     sineOf_ = dynamics_[0];
     libmSinCos(dynamics_[0], sine_, cosine);
-    observation_[0] = static_cast<float>(cosine);
-    observation_[1] = static_cast<float>(sine_);
-    observation_[2] = static_cast<float>(dynamics_[1]);
+    observation_[0] = cosine;
+    observation_[1] = sine_;
+    observation_[2] = dynamics_[1];
   }
 
   // np.sin(th): the observation's sine of the same angle where it is the same (bit for bit).

@@ -62,10 +62,10 @@ class GymnasiumTwin : public Environment {
   virtual void start(numpy::Pcg64& random) = 0;
   // One step of the unwrapped environment; writes the observation.
   virtual StepResult advance(std::span<const double> action, ActionKind kind) = 0;
-  // The observation as the float32 values Gymnasium's observation holds, once more after the
-  // twin's own casts: GCC 12.2 has stored a pair of static_cast<float> results unrounded
-  // (seen in Acrobot-v1's and Pendulum-v1's observations). Called after start, advance and by
-  // setState.
+  // The observation as the float32 values Gymnasium's observation holds: the twins write their
+  // float64 values and this rounds them, once, through numpy_scalar::toFloat32 (a plain
+  // static_cast<float> pair can be stored unrounded by GCC 12.2). Called after start, advance and
+  // by setState.
   void roundObservation();
   // The action's size checked against the space (InputError naming the twin).
   void checkActionSize(std::span<const double> action, std::size_t size) const;
