@@ -84,8 +84,11 @@ LearnerInfo arsLearner() {
                 space.continuous() || (space.components == 1 && space.choices.front() >= 2);
             return std::string(ok ? "" : "its actions are neither a box nor one discrete choice");
           },
-          "updates",
-          "ARS iteration"};
+          "updates", "ARS iteration",
+          // Each direction played + and - (the greedy last row as many episodes).
+          [](const Params& p) {
+            return 2 * static_cast<std::int64_t>(arsParams().read(p).directions);
+          }};
 }
 
 }  // namespace gpfd::rl

@@ -147,7 +147,10 @@ LearnerInfo lambdaPolicyIterationLearner() {
             return std::string(env.afterstateGame() ? "" : "it is not an afterstate game");
           },
           "iterations",
-          "lambda-PI iteration"};
+          "lambda-PI iteration",
+          [](const Params& p) {
+            return static_cast<std::int64_t>(table().read(p).algorithm.gamesPerIteration);
+          }};
 }
 
 }  // namespace gpfd::rl

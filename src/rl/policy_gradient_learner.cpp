@@ -127,7 +127,10 @@ LearnerInfo policyGradientLearner() {
         return std::string(ok ? "" : "its actions are neither a box nor one discrete choice");
       },
       "updates",
-      "policy update"};
+      "policy update",
+      [](const Params& p) {
+        return static_cast<std::int64_t>(policyGradientParams().read(p).episodesPerUpdate);
+      }};
 }
 
 }  // namespace gpfd::rl

@@ -338,6 +338,48 @@ auto makeAt(const Make& make, const std::string& owner,
   }
 }
 
+// An alternative of learner.choose (at `section`) that names another learner: a known learner
+// that can learn on `environment`, parameters it takes but its budget (which the choice matches
+// to the config's learner's episodes), and every training's settings (withCandidate) it makes.
+void validateCandidateLearner(const ExperimentConfig& c, const Params& alternative,
+                              const std::string& section, env::Environment& environment,
+                              const Place& place) {
+  const auto& learners = rl::LearnerRegistry::global();
+  const auto names = learners.names();
+  const std::string& name = alternative.at(kCandidateLearnerKey);
+  require(std::find(names.begin(), names.end(), name) != names.end(),
+          "unknown learner '" + name + "'" + io::didYouMean(name, names),
+          place(section, kCandidateLearnerKey));
+  try {
+    learners.checkSuitable(name, environment);
+  } catch (const InputError& e) {
+    throw InputError(e.what(), place(section, kCandidateLearnerKey));
+  }
+  Params own = alternative;
+  own.erase(kCandidateLearnerKey);
+  const auto& info = learners.info(name);
+  requireKnown(own, paramNames(info.params), "learner " + name, section, place);
+  require(!own.contains(info.budgetParam),
+          fmt::format("a candidate naming another learner gives no budget: its {} is set so that "
+                      "each training plays as many episodes as learner {} plays there "
+                      "(docs/learners.md, \"Choosing between learners\")",
+                      info.budgetParam, c.learner),
+          place(section, info.budgetParam));
+  const std::vector<std::pair<std::string, const Params*>> sections{{section, &own}};
+  const ExperimentConfig trained = makeAt([&] { return withCandidate(c, alternative); }, name,
+                                          sections, place(section, kCandidateLearnerKey), place);
+  for (const Params* overrides :
+       {&trained.validation.params, &trained.validation.confirmParams, &trained.assessParams,
+        &trained.rungParams, static_cast<const Params*>(nullptr)}) {
+    Params merged = trained.learnerParams;
+    if (overrides != nullptr) {
+      for (const auto& [key, value] : *overrides) merged[key] = value;
+    }
+    makeAt([&] { return learners.make(name, merged); }, name, sections,
+           place(section, kCandidateLearnerKey), place);
+  }
+}
+
 // gp::validate, its errors ("gp.KEY", "gp.operators.NAME") moved to the key's place, after the
 // operators' names are checked with a did-you-mean.
 void validateGp(const gp::GpConfig& gp, const Place& place) {
@@ -427,6 +469,10 @@ void validateAt(const ExperimentConfig& c, const Place& place,
          {{"learner.params", &c.learnerParams}}, place("learner", "name"), place);
   // Each candidate of learner.choose over learner.params.
   for (const auto& [key, values] : c.learnerChoices) {
+    require(key != kCandidateLearnerKey,
+            "another learner is named in an alternative, learner.choose = [{ learner = \"ars\" "
+            "}, ...], not among values per parameter",
+            place("learner.choose", key));
     require(std::find(learnerParamNames.begin(), learnerParamNames.end(), key) !=
                 learnerParamNames.end(),
             "unknown parameter '" + key + "' of learner " + c.learner +
@@ -445,8 +491,13 @@ void validateAt(const ExperimentConfig& c, const Place& place,
           "learner.choose is either a table of values per parameter or an array of alternatives",
           place("learner", "choose"));
   for (std::size_t i = 0; i < c.learnerAlternatives.size(); ++i) {
-    const Params& alternative = c.learnerAlternatives[i];
     const std::string section = "learner.choose[" + std::to_string(i) + "]";
+    if (candidateLearner(c, c.learnerAlternatives[i]) != c.learner) {
+      validateCandidateLearner(c, c.learnerAlternatives[i], section, *environment, place);
+      continue;
+    }
+    Params alternative = c.learnerAlternatives[i];
+    alternative.erase(kCandidateLearnerKey);  // The config's own learner, named.
     requireKnown(alternative, learnerParamNames, "learner " + c.learner, section, place);
     Params merged = c.learnerParams;
     for (const auto& [key, value] : alternative) merged[key] = value;
@@ -528,7 +579,10 @@ void keepChoicesWith(ExperimentConfig& config, const Params& given) {
       return value != given.end() && value->second != setting.second;
     });
   });
-  if (config.learnerAlternatives.size() == 1 && alternatives > 1) {
+  // A single one left is applied, unless it names another learner: that stays a choice (of one),
+  // which withCandidate applies with the budgets matched once the config is checked.
+  if (config.learnerAlternatives.size() == 1 && alternatives > 1 &&
+      !config.learnerAlternatives.front().contains(kCandidateLearnerKey)) {
     for (const auto& [key, value] : config.learnerAlternatives.front()) {
       if (!given.contains(key)) config.learnerParams[key] = value;
     }

@@ -10,9 +10,12 @@
 #include <nlohmann/json.hpp>
 
 #include "gpfd/gp/init.hpp"
+#include "gpfd/rl/learner.hpp"
 #include "gpfd/run/learning_task.hpp"
 #include "gpfd/run/redundancy.hpp"
 #include "gpfd/run/statistics.hpp"
+#include "gpfd/util/error.hpp"
+#include "gpfd/util/number.hpp"
 #include "gpfd/util/rng.hpp"
 
 namespace gpfd::run {
@@ -31,6 +34,16 @@ std::string settingsText(const std::map<std::string, std::string>& settings) {
   std::vector<std::string> parts;
   for (const auto& [key, value] : settings) parts.push_back(key + " = " + value);
   return fmt::format("{}", fmt::join(parts, ", "));
+}
+
+// Candidate c as the text says it: its settings; where learners differ, its learner, settings
+// and the episodes of a training.
+std::string candidateText(const LearnerChoice& choice, std::size_t c) {
+  if (!choice.otherLearners) return settingsText(choice.candidates[c]);
+  auto settings = choice.candidates[c];
+  settings.erase(kCandidateLearnerKey);
+  return fmt::format("{}{}{} ({} episodes a training)", choice.learners[c],
+                     settings.empty() ? "" : " with ", settingsText(settings), choice.episodes[c]);
 }
 
 // The first candidate listed before the best whose scores the best's do not beat significantly
@@ -120,7 +133,93 @@ bool noCandidateLearns(const LearnerChoice& choice) {
   return !choice.candidates.empty();
 }
 
+// `params` with `overrides` over them.
+Params merged(Params params, const Params& overrides) {
+  for (const auto& [key, value] : overrides) params[key] = value;
+  return params;
+}
+
+// The value of the learner's budget parameter in `params`, else its default.
+std::int64_t budgetValue(const rl::LearnerInfo& info, const Params& params) {
+  std::string value;
+  for (const auto& spec : info.params) {
+    if (spec.name == info.budgetParam) value = spec.defaultValue;
+  }
+  if (const auto given = params.find(info.budgetParam); given != params.end()) {
+    value = given->second;
+  }
+  return static_cast<std::int64_t>(parseNumber(value, info.name + "." + info.budgetParam));
+}
+
 }  // namespace
+
+std::string candidateLearner(const ExperimentConfig& config, const Params& candidate) {
+  const auto named = candidate.find(kCandidateLearnerKey);
+  return named == candidate.end() ? config.learner : named->second;
+}
+
+std::int64_t trainingEpisodes(const std::string& learner, const Params& params) {
+  const auto& info = rl::LearnerRegistry::global().info(learner);
+  if (!info.rowEpisodes) return 0;
+  return (budgetValue(info, params) + 1) * info.rowEpisodes(params);
+}
+
+ExperimentConfig withCandidate(ExperimentConfig config, const Params& candidate) {
+  config.learnerChoices.clear();
+  config.learnerAlternatives.clear();
+  const std::string learner = candidateLearner(config, candidate);
+  Params own = candidate;
+  own.erase(kCandidateLearnerKey);
+  if (learner == config.learner) {
+    config.learnerParams = merged(config.learnerParams, own);
+    return config;
+  }
+  // Another learner: its own parameters, each training's budget matched to the episodes the
+  // config's learner plays in it (the same experience; pg's 15 updates of 20 episodes, 320
+  // episodes, become ARS's 19 iterations of 8 directions, 320).
+  const auto& registry = rl::LearnerRegistry::global();
+  const auto& from = registry.info(config.learner);
+  const auto& to = registry.info(learner);
+  for (const auto* info : {&from, &to}) {
+    if (!info->rowEpisodes) {
+      throw InputError(
+          fmt::format("learner {} cannot be compared with learner {} at equal episodes: {} does "
+                      "not say how many episodes a training plays",
+                      config.learner, learner, info->name),
+          "learner.choose");
+    }
+  }
+  const auto names = paramNames(to.params);
+  // The budget parameter's value for the training `base` (the config's learner's parameters)
+  // with the new learner's `params`: the most iterations that play no more episodes.
+  const auto matched = [&](const Params& base, const Params& params) {
+    const std::int64_t episodes = trainingEpisodes(config.learner, base);
+    const std::int64_t perRow = std::max<std::int64_t>(1, to.rowEpisodes(params));
+    return std::to_string(std::max<std::int64_t>(0, episodes / perRow - 1));
+  };
+  Params params = own;
+  params[to.budgetParam] = matched(config.learnerParams, params);
+  // A budget's overrides: the keys the new learner takes, but its budget, which is matched.
+  const auto translated = [&](const Params& overrides) {
+    Params out;
+    if (overrides.empty()) return out;  // The trials' budget, matched already.
+    for (const auto& [key, value] : overrides) {
+      if (key != from.budgetParam && key != to.budgetParam &&
+          std::find(names.begin(), names.end(), key) != names.end()) {
+        out[key] = value;
+      }
+    }
+    out[to.budgetParam] = matched(merged(config.learnerParams, overrides), merged(params, out));
+    return out;
+  };
+  config.validation.params = translated(config.validation.params);
+  config.validation.confirmParams = translated(config.validation.confirmParams);
+  config.assessParams = translated(config.assessParams);
+  config.rungParams = translated(config.rungParams);
+  config.learnerParams = std::move(params);
+  config.learner = learner;
+  return config;
+}
 
 bool choosesLearner(const ExperimentConfig& config) {
   return !config.learnerChoices.empty() || !config.learnerAlternatives.empty();
@@ -151,6 +250,9 @@ LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner&
   };
   LearnerChoice choice;
   choice.candidates = learnerCandidates(config);
+  choice.otherLearners = std::any_of(
+      choice.candidates.begin(), choice.candidates.end(),
+      [&](const auto& candidate) { return candidateLearner(config, candidate) != config.learner; });
   choice.seeds = config.choiceSeeds;
   choice.randomSets = config.choiceRandomSets;
   std::vector<std::uint64_t> seeds;
@@ -176,11 +278,10 @@ LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner&
   std::vector<expr::Genome> genomes;
   bool withRandomSets = config.choiceRandomSets > 0;
   for (std::size_t c = 0; c < choice.candidates.size(); ++c) {
-    ExperimentConfig trained = config;
-    trained.learnerChoices.clear();
-    trained.learnerAlternatives.clear();
-    for (const auto& [key, value] : choice.candidates[c]) trained.learnerParams[key] = value;
+    const ExperimentConfig trained = withCandidate(config, choice.candidates[c]);
     const LearningTask task(trained, budget);
+    choice.learners.push_back(trained.learner);
+    choice.episodes.push_back(trainingEpisodes(trained.learner, task.learnerParams()));
     std::vector<double> scores;
     if (c == 0) {
       // One training, timed, sizes the rest: all of it where it fits the allowance, else
@@ -234,12 +335,7 @@ LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner&
 }
 
 ExperimentConfig withLearnerChoice(ExperimentConfig config, const LearnerChoice& choice) {
-  for (const auto& [key, value] : choice.candidates.at(choice.chosen)) {
-    config.learnerParams[key] = value;
-  }
-  config.learnerChoices.clear();
-  config.learnerAlternatives.clear();
-  return config;
+  return withCandidate(std::move(config), choice.candidates.at(choice.chosen));
 }
 
 std::string learnerChoiceText(const LearnerChoice& choice) {
@@ -249,7 +345,7 @@ std::string learnerChoiceText(const LearnerChoice& choice) {
     tried.push_back(fmt::format(
         "{:.4g}{} with {}", choice.means[c],
         random ? fmt::format(" (random sets {:.4g})", choice.randomSetsBest[c]) : std::string(),
-        settingsText(choice.candidates[c])));
+        candidateText(choice, c)));
   }
   std::string cut;
   if (choice.cut == LearnerChoice::Cut::RandomSets) {
@@ -274,7 +370,7 @@ std::string learnerChoiceText(const LearnerChoice& choice) {
   return fmt::format(
       "learner settings chosen on this task: {} (the original variables' mean score on {} fresh "
       "seeds{}, trained as the {} trains: {}; {:.2g} s{}); written to config.toml\n",
-      settingsText(choice.candidates.at(choice.chosen)), choice.seeds,
+      candidateText(choice, choice.chosen), choice.seeds,
       random ? fmt::format(", or the best quarter of {} random feature sets' on {} seeds if higher",
                            choice.randomSets, kRandomSetSeeds)
              : std::string(),
@@ -295,12 +391,18 @@ std::string learnerChoiceJson(const LearnerChoice& choice) {
     if (!choice.randomSetsBest.empty()) {
       tried.back()["random_sets_best"] = number(choice.randomSetsBest[c]);
     }
+    // Only where learners differ, likewise.
+    if (choice.otherLearners) {
+      tried.back()["learner"] = choice.learners[c];
+      tried.back()["episodes"] = choice.episodes[c];
+    }
   }
   nlohmann::ordered_json json{{"seeds", choice.seeds},
                               {"training", choice.confirmation ? "confirmation" : "validation"},
                               {"tried", tried},
                               {"chosen", choice.candidates.at(choice.chosen)},
                               {"nothing_learns", choice.nothingLearns}};
+  if (choice.otherLearners) json["learner"] = choice.learners.at(choice.chosen);
   // Only where the time budget cut the choice, so that a whole choice keeps its bytes.
   if (choice.cut == LearnerChoice::Cut::RandomSets) json["cut"] = "random sets";
   if (choice.cut == LearnerChoice::Cut::Candidates) json["cut"] = "candidates";

@@ -95,10 +95,21 @@ std::optional<run::ExperimentConfig> expectedConfig(const EvolveRequest& request
   const std::string stored = dir + "/config.toml";
   if (!fs::exists(stored)) return expected;
   const auto chosen = run::loadStoredExperimentConfig(stored);
-  for (const auto& candidate : run::learnerCandidates(expected)) {
-    for (const auto& [key, ignored] : candidate) {
-      const auto value = chosen.learnerParams.find(key);
-      if (value != chosen.learnerParams.end()) expected.learnerParams[key] = value->second;
+  const auto candidates = run::learnerCandidates(expected);
+  // Another learner chosen: the first candidate naming it, its budgets matched as the choice
+  // matched them.
+  const auto other = std::find_if(candidates.begin(), candidates.end(), [&](const auto& c) {
+    const auto learner = run::candidateLearner(expected, c);
+    return learner != expected.learner && learner == chosen.learner;
+  });
+  if (other != candidates.end()) {
+    expected = run::withCandidate(expected, *other);
+  } else {
+    for (const auto& candidate : candidates) {
+      for (const auto& [key, ignored] : candidate) {
+        const auto value = chosen.learnerParams.find(key);
+        if (value != chosen.learnerParams.end()) expected.learnerParams[key] = value->second;
+      }
     }
   }
   expected.learnerChoices.clear();

@@ -50,6 +50,17 @@ class Said final : public service::EvolveProgress {
   std::string said;
 };
 
+// Resumes the run in `dir` to 3 generations, checked against `config`: whether it finished.
+bool resumeFinishes(const std::string& dir, const std::string& config) {
+  service::EvolveRequest resume;
+  resume.resume = dir;
+  resume.config = config;
+  resume.generations = 3;
+  service::EvolveProgress quiet;
+  const std::atomic<bool> go{false};
+  return service::evolve(resume, quiet, go).finished;
+}
+
 TEST(LearnerChoice, CandidatesAreEveryCombinationInOrder) {
   auto config = service::loadConfig(choosingConfig(), {"learner.choose.episodes=[3, 5]"});
   const auto candidates = run::learnerCandidates(config);
@@ -116,12 +127,7 @@ TEST(LearnerChoice, ARunWritesTheChoiceAndAResumeKeepsIt) {
       << progress.said;
 
   // A resume checked against the choosing config is accepted (it stands for the choice made).
-  service::EvolveRequest resume;
-  resume.resume = dir;
-  resume.config = request.config;
-  resume.generations = 3;
-  service::EvolveProgress quiet;
-  EXPECT_TRUE(service::evolve(resume, quiet, go).finished);
+  EXPECT_TRUE(resumeFinishes(dir, request.config));
   EXPECT_EQ(run::loadExperimentConfig(dir + "/config.toml").learnerParams.at("rprop"), rprop);
 }
 
@@ -311,12 +317,18 @@ TEST(LearnerChoice, AlternativesAreTheCandidatesAsListedAndReadBackAsWritten) {
   EXPECT_EQ(again.choiceSeeds, 4);
 }
 
+// The choice on one thread, checked to be the same on two (bit for bit).
+run::LearnerChoice choiceOnAnyThreads(const run::ExperimentConfig& config) {
+  run::ThreadTrialRunner one(1), two(2);
+  auto choice = run::chooseLearnerSettings(config, one);
+  EXPECT_EQ(choice.means, run::chooseLearnerSettings(config, two).means);
+  return choice;
+}
+
 TEST(LearnerChoice, AnAlternativeChosenSetsAllItsParameters) {
   const auto config = service::loadConfig(choosingConfig(), {kAlternatives});
-  run::ThreadTrialRunner one(1), two(2);
-  const auto a = run::chooseLearnerSettings(config, one);
+  const auto a = choiceOnAnyThreads(config);
   ASSERT_EQ(a.means.size(), 2u);
-  EXPECT_EQ(a.means, run::chooseLearnerSettings(config, two).means);  // Bit for bit.
   EXPECT_NE(a.means[0], a.means[1]);
   const auto chosen = run::withLearnerChoice(config, a);
   EXPECT_FALSE(run::choosesLearner(chosen));
@@ -442,6 +454,142 @@ TEST(LearnerChoice, NothingLearnsStopsTheRun) {
   // A learner that learns is not stopped (the first test's config, which trains).
   EXPECT_FALSE(
       run::chooseLearnerSettings(service::loadConfig(choosingConfig(), {}), threads).nothingLearns);
+}
+
+}  // namespace
+}  // namespace gpfd::testing
+
+namespace gpfd::testing {
+namespace {
+
+// learner.choose naming another learner: pg's natural steps of a KL of 1e-12 (which learn
+// nothing) against ARS (Mania, Guy & Recht 2018) with 2 directions, each given as many episodes
+// as pg plays: confirmation 9 rows of 5 episodes (45) become 10 ARS iterations + 1 of 4 (44).
+const char* kArsAlternative =
+    "learner.choose=[{ step = \"natural\", kl = 1e-12 }, { learner = \"ars\", n_delta = 2, "
+    "learning_rate = 0.1, greedy_last = true }]";
+
+TEST(LearnerChoice, ACandidateMayNameAnotherLearnerAtEqualEpisodes) {
+  const auto config = service::loadConfig(choosingConfig(), {kArsAlternative});
+  EXPECT_EQ(run::trainingEpisodes("pg", {{"updates", "8"}, {"episodes", "5"}}), 45);
+  EXPECT_EQ(run::trainingEpisodes("ars", {{"updates", "10"}, {"n_delta", "2"}}), 44);
+  EXPECT_EQ(run::trainingEpisodes("lpi", {{"iterations", "2"}, {"games", "3"}}), 9);
+  EXPECT_EQ(run::trainingEpisodes("ars", {}), 101 * 16);  // Its defaults: 100 x 8 directions.
+  const auto ars = run::withCandidate(config, run::learnerCandidates(config)[1]);
+  EXPECT_EQ(ars.learner, "ars");
+  EXPECT_FALSE(run::choosesLearner(ars));
+  // Its own parameters (none of pg's learner.params: rprop, episodes), the budgets matched:
+  // trials 5 x 5 = 25 episodes -> 5 iterations + 1 of 4 (24); confirmation 45 -> 10 (44).
+  EXPECT_EQ(
+      ars.learnerParams,
+      (std::map<std::string, std::string>{
+          {"greedy_last", "true"}, {"learning_rate", "0.1"}, {"n_delta", "2"}, {"updates", "5"}}));
+  EXPECT_EQ(ars.validation.confirmParams, (std::map<std::string, std::string>{{"updates", "10"}}));
+  EXPECT_TRUE(ars.validation.params.empty());  // The trials' budget, as in the config.
+  run::validate(ars);
+  // The config's own learner named is an alternative over learner.params as before.
+  const auto same = service::loadConfig(
+      choosingConfig(), {"learner.choose=[{ learner = \"pg\", rprop = \"small\" }, {}]"});
+  const auto pg = run::withCandidate(same, run::learnerCandidates(same)[0]);
+  EXPECT_EQ(pg.learner, "pg");
+  EXPECT_EQ(pg.learnerParams.at("rprop"), "small");
+  EXPECT_EQ(pg.learnerParams.at("episodes"), "5");
+}
+
+TEST(LearnerChoice, ALearnerThatTrainsBetterIsChosenAndNamed) {
+  const auto config = service::loadConfig(choosingConfig(), {kArsAlternative});
+  const auto a = choiceOnAnyThreads(config);
+  run::ThreadTrialRunner one(1);
+  ASSERT_EQ(a.means.size(), 2u);
+  EXPECT_EQ(a.learners, (std::vector<std::string>{"pg", "ars"}));
+  EXPECT_EQ(a.episodes, (std::vector<std::int64_t>{45, 44}));
+  ASSERT_GT(a.means[1], a.means[0]) << "ARS must train cart-pole better than a frozen pg here";
+  EXPECT_EQ(a.chosen, 1u);
+  const auto chosen = run::withLearnerChoice(config, a);
+  EXPECT_EQ(chosen.learner, "ars");
+  EXPECT_EQ(chosen.learnerParams.at("updates"), "5");
+  const auto json = nlohmann::json::parse(run::learnerChoiceJson(a));
+  EXPECT_EQ(json.at("learner"), "ars");
+  EXPECT_EQ(json.at("chosen").at("learner"), "ars");
+  EXPECT_EQ(json.at("tried")[0].at("learner"), "pg");
+  EXPECT_EQ(json.at("tried")[1].at("episodes"), 44);
+  const auto text = run::learnerChoiceText(a);
+  EXPECT_NE(text.find("chosen on this task: ars with"), std::string::npos) << text;
+  EXPECT_NE(text.find("(45 episodes a training)"), std::string::npos) << text;
+  // The same learner's candidates keep their JSON (no learner, no episodes).
+  const auto plain = nlohmann::json::parse(run::learnerChoiceJson(
+      run::chooseLearnerSettings(service::loadConfig(choosingConfig(), {}), one)));
+  EXPECT_FALSE(plain.contains("learner"));
+  EXPECT_FALSE(plain.at("tried")[0].contains("episodes"));
+  // ARS that learns nothing (a learning rate of 0) against pg's large Rprop steps: pg.
+  const auto frozen = service::loadConfig(
+      choosingConfig(), {"learner.choose=[{ learner = \"ars\", n_delta = 2, learning_rate = 0 }, "
+                         "{ rprop = \"large\" }]"});
+  const auto b = run::chooseLearnerSettings(frozen, one);
+  ASSERT_GT(b.means[1], b.means[0]);
+  EXPECT_EQ(run::withLearnerChoice(frozen, b).learner, "pg");
+}
+
+TEST(LearnerChoice, ARunWithAnotherLearnerChosenWritesItAndResumes) {
+  const auto dir = freshDir("choose-ars-run");
+  service::EvolveRequest request;
+  // choosingConfig() with kArsAlternative in the file: a resume reads the config as it is.
+  auto text = readText(choosingConfig());
+  const std::string choose = "choose = { rprop = [\"small\", \"large\"] }";
+  ASSERT_NE(text.find(choose), std::string::npos);
+  text.replace(text.find(choose), choose.size(), std::string(kArsAlternative).substr(8));
+  request.config = writeText("choose-ars.toml", text);
+  request.out = {dir, false, "--out"};
+  request.threads = 2;
+  Said progress;
+  const std::atomic<bool> go{false};
+  ASSERT_TRUE(service::evolve(request, progress, go).finished);
+  const auto written = run::loadExperimentConfig(dir + "/config.toml");
+  EXPECT_EQ(written.learner, "ars");
+  EXPECT_FALSE(run::choosesLearner(written));
+  EXPECT_EQ(written.validation.confirmParams.at("updates"), "10");
+  const auto runJson = nlohmann::json::parse(readText(dir + "/run.json"));
+  EXPECT_EQ(runJson.at("learner_choice").at("learner"), "ars");
+  EXPECT_NE(progress.said.find("chosen on this task: ars with"), std::string::npos)
+      << progress.said;
+  EXPECT_TRUE(resumeFinishes(dir, request.config));
+  EXPECT_EQ(run::loadExperimentConfig(dir + "/config.toml").learner, "ars");
+}
+
+TEST(LearnerChoice, AssessMayChooseAnotherLearner) {
+  auto request = rawAssessment();
+  request.overrides = {kArsAlternative};
+  request.budget = 8;  // pg's updates: 45 episodes, ARS's 10 iterations.
+  std::string printed;
+  const auto result = service::assess(request, [&](const std::string& t) { printed += t; });
+  EXPECT_EQ(result.config.learner, "ars");
+  EXPECT_EQ(result.config.assessParams.at("updates"), "10");
+  EXPECT_NE(printed.find("runs on cartpole (ars)"), std::string::npos) << printed;
+}
+
+TEST(LearnerChoice, BadCandidateLearnersAreErrorsNamingThem) {
+  // Each second alternative (after { rprop = "small" }) and what its error must say.
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases{
+      {"{ learner = \"arz\" }",
+       {"learner.choose[1].learner", "unknown learner 'arz'", "did you mean 'ars'"}},
+      {"{ learner = \"ars\", n_delt = 2 }",
+       {"learner.choose[1].n_delt", "learner ars", "did you mean 'n_delta'"}},
+      {"{ learner = \"ars\", rprop = \"large\" }", {"learner.choose[1].rprop", "learner ars"}},
+      {"{ learner = \"ars\", updates = 5 }", {"learner.choose[1].updates", "gives no budget"}},
+      {"{ learner = \"ars\", n_delta = 2, n_top = 3 }",
+       {"learner.choose[1]", "n_top must be at most n_delta"}},
+      {"{ learner = \"lpi\" }", {"learner.choose[1].learner", "cannot learn on"}},
+  };
+  for (const auto& [alternative, said] : cases) {
+    const auto error = refusal(
+        {"learner.choose={}", "learner.choose=[{ rprop = \"small\" }, " + alternative + "]"});
+    for (const auto& text : said) {
+      EXPECT_NE(error.find(text), std::string::npos) << alternative << " -> " << error;
+    }
+  }
+  const auto values = refusal({"learner.choose.learner=[\"ars\"]"});
+  EXPECT_NE(values.find("learner.choose.learner"), std::string::npos) << values;
+  EXPECT_NE(values.find("in an alternative"), std::string::npos) << values;
 }
 
 }  // namespace

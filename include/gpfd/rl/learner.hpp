@@ -76,6 +76,11 @@ struct LearnerInfo {
   // learning curve after the first stands for (plots).
   std::string budgetParam;
   std::string rowName;
+  // The episodes one row of its learning curve plays, from its parameters (pg's episodes, ars's
+  // 2 n_delta, lpi's games), so that a training of B (budgetParam) plays (B + 1) times as many:
+  // learner.choose compares another learner at the same episodes (run/learner_choice.hpp). Empty
+  // where the count is not fixed; such a learner is no other learner's candidate.
+  std::function<std::int64_t(const Params&)> rowEpisodes;
 };
 
 // info(name) and names() come from NamedRegistry.

@@ -16,6 +16,7 @@
 // so a resume, or that config run again, gives the same run.
 #pragma once
 
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <string>
@@ -28,6 +29,32 @@ namespace gpfd::run {
 
 // The most combinations `learner.choose` may list (each costs choose_seeds trainings).
 inline constexpr std::size_t kMaxLearnerChoices = 16;
+
+// The key of an alternative that names another learner: [{ rprop = "large" }, { learner = "ars",
+// n_delta = 8 }]. Such a candidate is that learner with its own parameters (over its defaults,
+// never the config's learner.params) at equal episodes: every training it makes (GP's trials,
+// validation, confirmation, assessment, fitness.rung_params) is given the most iterations of its
+// budget parameter that play no more episodes than the config's learner plays in that training
+// (LearnerInfo::rowEpisodes), so that the choice compares the learners on the same seeds, the
+// same measure and the same experience; the candidate gives no budget of its own.
+inline constexpr const char* kCandidateLearnerKey = "learner";
+
+// The learner a candidate trains: the one it names, or the config's own.
+std::string candidateLearner(const ExperimentConfig& config,
+                             const std::map<std::string, std::string>& candidate);
+
+// The episodes one training of the config's learner plays with `params` (its learner.params with
+// a budget's overrides): (budget parameter + 1) x LearnerInfo::rowEpisodes; 0 where the learner
+// does not say.
+std::int64_t trainingEpisodes(const std::string& learner,
+                              const std::map<std::string, std::string>& params);
+
+// `config` trained with `candidate`: its values over learner.params, or, where it names another
+// learner (kCandidateLearnerKey), that learner with the candidate's parameters and each
+// training's budget matched to the config's learner's episodes; no choice left. InputError where
+// a learner cannot say its episodes.
+ExperimentConfig withCandidate(ExperimentConfig config,
+                               const std::map<std::string, std::string>& candidate);
 
 // Whether the config has a learner.choose (values per parameter or alternatives).
 bool choosesLearner(const ExperimentConfig& config);
@@ -59,6 +86,13 @@ struct LearnerChoice {
   // Where the allowance cut it: the random sets left out, every candidate but the first, or all
   // but the first candidate's first training (no no-learning reference then: its mean -inf).
   enum class Cut { None, RandomSets, Candidates, All } cut = Cut::None;
+  // Per candidate tried: its learner, and the episodes of one of its trainings (trainingEpisodes
+  // under the choice's budget; 0 where its learner does not say).
+  std::vector<std::string> learners;
+  std::vector<std::int64_t> episodes;
+  // Whether a candidate names another learner than the config's: the text and JSON then name
+  // each one's learner and episodes.
+  bool otherLearners = false;
   double firstSeconds = 0.0;      // The first training (the original variables, first seed).
   double predictedSeconds = 0.0;  // The whole choice's, predicted from it.
 };
@@ -74,7 +108,7 @@ LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner&
                                     double allowance = std::numeric_limits<double>::infinity(),
                                     int workers = 1);
 
-// `config` with the chosen values in learner.params and no choice left.
+// `config` with the chosen candidate (withCandidate) and no choice left.
 ExperimentConfig withLearnerChoice(ExperimentConfig config, const LearnerChoice& choice);
 
 // What was tried and chosen: one line of text (with the seconds it took), and JSON (run.json's

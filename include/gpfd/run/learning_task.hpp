@@ -29,6 +29,8 @@ class LearningTask {
 
   const ExperimentConfig& config() const { return config_; }
   Budget budget() const { return budget_; }
+  // The learner's parameters for this budget: learner.params with the budget's overrides.
+  const std::map<std::string, std::string>& learnerParams() const { return learnerParams_; }
   const std::vector<std::string>& stateNames() const { return stateNames_; }
   std::size_t stateDim() const { return stateNames_.size(); }
 

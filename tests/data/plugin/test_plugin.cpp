@@ -297,14 +297,25 @@ void registerAll(PluginRegistries& r) {
           return std::make_unique<DriftBatch>(dynamic_cast<const Drift&>(prototype), isa);
         }}});
   r.learners.add(
-      {"hill", "hill climbing over linear policies (a test plug-in)", HillConfig::table().specs(),
+      {"hill",
+       "hill climbing over linear policies (a test plug-in)",
+       HillConfig::table().specs(),
        [](const Params& p) { return std::make_unique<Hill>(HillConfig::table().read(p)); },
-       "one continuous action", unsuitable, "updates", "perturbation"});
+       "one continuous action",
+       unsuitable,
+       "updates",
+       "perturbation",
+       {}});
   r.learners.add(
-      {"sleep", "sleeps, then plays with every weight 1 (a test plug-in)",
+      {"sleep",
+       "sleeps, then plays with every weight 1 (a test plug-in)",
        SleepConfig::table().specs(),
        [](const Params& p) { return std::make_unique<Sleep>(SleepConfig::table().read(p)); },
-       "one continuous action", unsuitable, "episodes", "episode"});
+       "one continuous action",
+       unsuitable,
+       "episodes",
+       "episode",
+       {}});
 }
 
 }  // namespace
