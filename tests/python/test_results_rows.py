@@ -7,6 +7,7 @@ against the same runs."""
 
 import csv
 import re
+import statistics
 import subprocess
 import sys
 
@@ -21,6 +22,10 @@ SUITE_LABELS = sorted(
 REPRODUCE = sorted({p.parent.parent for p in RESULTS.rglob("method-*.csv")})
 RUN_SETS = sorted(
     p.parent for p in RESULTS.rglob("sets.csv") if (p.parent / "verdict.txt").exists()
+)
+# scripts/zoo-check's outputs: summary.csv and README-table.md beside the scores.csv they came from.
+ZOO_CHECKS = sorted(
+    p.parent for p in (RESULTS / "zoo").rglob("summary.csv") if (p.parent / "scores.csv").exists()
 )
 
 
@@ -211,6 +216,48 @@ def test_the_results_readme_tables_are_the_rows():
             baseline = row["baseline: median change"].split(" (")[-1].rstrip(")")
             assert cells[6].replace("**", "") == f"{baseline}, {row['baseline: better / worse']}"
     assert seen == set(README_ROWS)
+
+
+def zoo_rows(top):
+    """summary.csv's rows with their numbers as scripts/zoo-check's summarise gives them."""
+    rows = read(top / "summary.csv")
+    for r in rows:
+        for key in ("mean", "sd", "fraction"):
+            r[key] = float(r[key])
+        r["wilcoxon_p"] = float(r["wilcoxon_p"]) if r["wilcoxon_p"] else ""
+        for key in ("above_raw", "below_raw", "seeds", "steps", "zoo_steps"):
+            r[key] = int(r[key]) if r[key] else ""
+    return rows
+
+
+def test_every_zoo_check_is_found():
+    assert {p.relative_to(RESULTS).as_posix() for p in ZOO_CHECKS} >= {"zoo"}
+
+
+@pytest.mark.parametrize("top", ZOO_CHECKS, ids=lambda p: p.relative_to(RESULTS).as_posix())
+def test_a_zoo_summary_is_its_scores(top):
+    """Every row's mean, sd, paired Wilcoxon p and counts, computed again from scores.csv (the
+    training seeds 1..N at the row's steps; the last score of a key, as the script reads them),
+    and README-table.md as the script writes it from those rows."""
+    zoo = script_module("zoo-check")
+    scores = zoo.read_scores(top / "scores.csv")
+    rows = zoo_rows(top)
+    assert rows
+    for r in rows:
+        seeds = range(1, r["seeds"] + 1)
+        values = [scores[(r["task"], r["observation"], s, r["steps"])] for s in seeds]
+        raw = [scores[(r["task"], "raw", s, r["steps"])] for s in seeds]
+        where = f"{r['task']} {r['configuration']}"
+        assert r["mean"] == pytest.approx(statistics.mean(values), rel=1e-12), where
+        assert r["sd"] == pytest.approx(statistics.stdev(values), rel=1e-12, abs=1e-12), where
+        if r["configuration"] == "raw":
+            assert r["observation"] == "raw"
+            continue
+        p, above, below = zoo.paired(values, raw)
+        assert r["wilcoxon_p"] == pytest.approx(p, rel=1e-12), where
+        assert (r["above_raw"], r["below_raw"]) == (above, below), where
+    table = (top / "README-table.md").read_text()
+    assert zoo.markdown(rows, table.splitlines()[0]) == table
 
 
 def test_a_suite_summary_regenerates_from_its_rows(tmp_path):
