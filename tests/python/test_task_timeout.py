@@ -5,6 +5,7 @@ the directory resumes to the same run. Bad values, gpfd's own environments and w
 process are InputErrors."""
 
 import os
+import re
 import subprocess
 import sys
 import textwrap
@@ -64,13 +65,25 @@ def evolve(tmp_path: Path, name: str, once: bool, arm: bool, **options: Any) -> 
     )
 
 
-@pytest.fixture(scope="module")
-def reference(tmp_path_factory) -> dict[str, str]:
-    """The run on gpfd's pool with the deadline, nothing hung."""
-    tmp = tmp_path_factory.mktemp("ref")
+def with_deadline(files: dict[str, str], seconds: float) -> dict[str, str]:
+    """A run's files (run_files) as they read with task_timeout = `seconds` in its config: a run
+    under another deadline is otherwise the same run."""
+    line = re.compile(r"^task_timeout = .*$", re.MULTILINE)
+    assert line.search(files["config.toml"]), files["config.toml"]
+    return {**files, "config.toml": line.sub(f"task_timeout = {seconds:.1f}", files["config.toml"])}
+
+
+def reference_files(tmp: Path) -> dict[str, str]:
+    """The run on gpfd's pool with the deadline, nothing hung (test_executor_ray and
+    test_executor_mpi4py compare theirs to it too)."""
     run = evolve(tmp, "ref", once=True, arm=False, **COMMON, threads=2, task_timeout=TIMEOUT)
     assert run.config["task_timeout"] == TIMEOUT
     return run_files(run.dir)
+
+
+@pytest.fixture(scope="module")
+def reference(tmp_path_factory) -> dict[str, str]:
+    return reference_files(tmp_path_factory.mktemp("ref"))
 
 
 def test_a_task_hung_once_runs_again_on_a_new_worker_of_gpfds_pool(tmp_path, reference):
