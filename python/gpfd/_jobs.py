@@ -224,12 +224,12 @@ class Jobs:
             turn = 0
             while turn < len(work):
                 quiet = self._quiet(key) if silent else None
-                if quiet is None and dead_after is not None:  # No result yet to measure by.
+                if quiet is None:  # No result yet to measure by: the deadline's, where one is set.
                     quiet = dead_after
                 timeout = None if quiet is None else max(0.0, last + quiet - time.monotonic())
-                if dead_after is not None and quiet is not None:
+                if expiry is not None and dead_after is not None and quiet is not None:
                     given_up = answered + max(quiet, dead_after) + dead_after
-                    timeout = min(timeout, max(0.0, given_up - time.monotonic()))
+                    timeout = max(0.0, min(last + quiet, given_up) - time.monotonic())
                     if time.monotonic() >= given_up:
                         raise self._no_worker_left(executor, expiry, time.monotonic() - answered)
                 if unsent:
