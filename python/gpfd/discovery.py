@@ -468,7 +468,7 @@ def evolve(
         ends, and the task runs again as a lost worker's: gpfd's pool (``threads``) starts a new
         worker and runs it again, up to 3 workers, then stops the run with gpfd.WorkerError naming
         the environment and the step (the directory keeps its last complete generation, which
-        ``resume=`` continues); Dask and Ray run it again on a fresh worker (Ray's last try
+        ``resume=`` continues); Dask and Ray run it again on a fresh worker (their last try
         failed: gpfd.WorkerError, as the pool's); mpi4py's pool sends it again to another rank
         (it cannot replace the rank; with none left, gpfd.WorkerError); a
         ``ProcessPoolExecutor`` or loky breaks as a whole (WorkerError). Refused (InputError)
