@@ -5,22 +5,22 @@ An environment stepped in Python is driven from C++ (python/src) through two ada
 - ``AdapterProtocol``, one Gymnasium environment (gpfd.user_env.Adapter), driven by
   python/src/python_environment.cpp;
 - ``VectorAdapterProtocol``, the vector form shared by a lockstep group's players
-  (gpfd.vector_source.VectorAdapter), driven by python/src/vector_hub.cpp.
+  (gpfd.adapters.vector_adapter.VectorAdapter), driven by python/src/vector_hub.cpp.
 
 C++ reads every attribute as a property (it never sets one) and calls the methods with the GIL
 held; it converts what they return as stated below and raises std::logic_error where a method
 that must raise returns. mypy checks each adapter against its protocol (the ``_conforms``
-functions of gpfd.user_env and gpfd.vector_source), and tests/python/test_protocol.py that
+functions of gpfd.user_env and gpfd.adapters.sources), and tests/python/test_protocol.py that
 every name the C++ sources look up is a member here.
 
 The module-level functions C++ calls are:
 
 - ``gpfd.user_env.make_adapter(name) -> AdapterProtocol``: each new instance of a registered
   environment;
-- ``gpfd.vector_source.native_single(name, adapter) -> (EnvBatch, bool) | None``: gpfd's own
+- ``gpfd.adapters.sources.native_single(name, adapter) -> (EnvBatch, bool) | None``: gpfd's own
   engine under a single adapter (stepped without Python), with whether actions round to float32;
-- ``gpfd.vector_source.has_vector_form(name) -> bool``;
-- ``gpfd.vector_source.make_vector_adapter(name, state_dim, choices, low, high)
+- ``gpfd.adapters.sources.has_vector_form(name) -> bool``;
+- ``gpfd.adapters.vector_adapter.make_vector_adapter(name, state_dim, choices, low, high)
   -> VectorAdapterProtocol``: each vector form made (one per lockstep group);
 - ``gpfd.features.expectation(env, variables, params)``: what a features text is read against.
 """
@@ -64,7 +64,7 @@ class AdapterProtocol(Protocol):
 
     @property
     def env(self) -> Any:
-        """The Gymnasium environment; gpfd.vector_source.native_single unwraps it to find gpfd's
+        """The Gymnasium environment; gpfd.adapters.sources.native_single unwraps it to find gpfd's
         own engine."""
 
     @property

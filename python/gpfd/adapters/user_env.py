@@ -22,12 +22,15 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
-from gpfd import _core, _deadline, registry, vector_cache, vector_source
+from gpfd import _core
+from gpfd.adapters import sources, vector_cache
+from gpfd.environments import registry
+from gpfd.environments.registry import is_builtin  # Also gpfd.user_env.is_builtin, as before.
 from gpfd.errors import EnvError  # Also gpfd.user_env.EnvError, as before.
-from gpfd.registry import is_builtin  # Also gpfd.user_env.is_builtin, as before.
+from gpfd.execution import _deadline
 
 if TYPE_CHECKING:
-    from gpfd.protocol import AdapterProtocol
+    from gpfd.adapters.protocol import AdapterProtocol
 
 #: The shipped config (configs/user-env.toml) of gpfd.evolve and gpfd.assess on an environment
 #: stepped in Python, when no config is given.
@@ -48,10 +51,10 @@ def resolve(
     env: str | Callable[..., gym.Env], env_kwargs: dict[str, Any] | None
 ) -> tuple[str, Callable[[], gym.Env]]:
     """(registry name, factory) for a Gymnasium id, an EnvPool task ("envpool/TASK") or a
-    callable returning an environment; the factory of an id is a vector_source.VectorSource."""
+    callable returning an environment; the factory of an id is a sources.VectorSource."""
     if isinstance(env, str):
-        if env.startswith((vector_source.ENVPOOL_PREFIX, "envpool:")):
-            return vector_source.envpool_source(env, env_kwargs)
+        if env.startswith((sources.ENVPOOL_PREFIX, "envpool:")):
+            return sources.envpool_source(env, env_kwargs)
         if ":" not in env:  # "module:Id" imports the module first: gymnasium.make checks it.
             try:
                 gym.spec(env)
@@ -61,12 +64,12 @@ def resolve(
                     f"unknown environment {env!r}: neither gpfd's ({builtin}) nor a Gymnasium "
                     f"id ({e})"
                 ) from None
-        return env, vector_source.GymnasiumSource(env, env_kwargs)
+        return env, sources.GymnasiumSource(env, env_kwargs)
     if not callable(env):
         raise TypeError(
             f"env must be a name, a Gymnasium id or a callable, not {type(env).__name__}"
         )
-    if env_kwargs and isinstance(env, vector_source.VectorFactory):
+    if env_kwargs and isinstance(env, sources.VectorFactory):
         raise TypeError("env_kwargs with a VectorFactory: give them to its make_vec")
     if env_kwargs:
         env = functools.partial(env, **env_kwargs)
@@ -81,7 +84,7 @@ def run_name(name: str) -> str:
 
     Example::
 
-        from gpfd.user_env import run_name
+        from gpfd.adapters.user_env import run_name
 
         run_name("ALE/Pong-v5"), run_name("python:make_env")  # "ALE-Pong-v5", "make_env"
     """
@@ -114,8 +117,8 @@ def make_adapter(name: str) -> Adapter:
 
 
 class Adapter:
-    """Drives one Gymnasium environment for gpfd (gpfd.protocol.AdapterProtocol): checks its
-    spaces once and every observation, converts actions, and turns its exceptions into EnvError
+    """Drives one Gymnasium environment for gpfd (gpfd.adapters.protocol.AdapterProtocol): checks
+    its spaces once and every observation, converts actions, and turns its exceptions into EnvError
     naming the call."""
 
     def __init__(self, name: str, env: gym.Env):
@@ -156,7 +159,7 @@ class Adapter:
             raise EnvError(f"{self.name}: close() raised {type(e).__name__}: {e}") from e
 
     def where(self) -> str:
-        """The call under way or last made, as an error names it (gpfd._deadline)."""
+        """The call under way or last made, as an error names it (gpfd.execution._deadline)."""
         call = "reset" if self._steps == 0 else f"step {self._steps} of its episode, counted from 1"
         return f"{self.name}: {call}"
 

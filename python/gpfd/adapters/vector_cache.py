@@ -1,5 +1,5 @@
-"""Idle vector environments, parked by a closed gpfd.vector_source.VectorAdapter for the next one
-of the same environment, source and size: making one costs more than a short fitness
+"""Idle vector environments, parked by a closed gpfd.adapters.vector_adapter.VectorAdapter for the
+next one of the same environment, source and size: making one costs more than a short fitness
 evaluation's resets.
 
 Each is closed when no longer needed: when its environment's name is registered again

@@ -37,9 +37,9 @@ except ImportError as e:  # The optional extra.
         "gpfd.sb3 needs Stable-Baselines3: pip install 'gpfd[sb3]' (or stable-baselines3)"
     ) from e
 
-from gpfd import twins
 from gpfd._core import FeatureSet, InputError
-from gpfd.wrappers import check_features
+from gpfd.agents.wrappers import check_features
+from gpfd.environments import twins
 
 _F32_MAX = float(np.finfo(np.float32).max)
 

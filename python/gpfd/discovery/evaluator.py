@@ -1,5 +1,5 @@
 """The work of a discovery or an assessment on an environment stepped in Python, run on an
-executor: GP's fitness evaluations (``Evaluator.__call__``, python/src/discovery_bindings.cpp)
+executor: GP's fitness evaluations (``Evaluator.__call__``, python/src/python_evaluator.cpp)
 and the learning runs of validation, confirmation and assessment (``Evaluator.run_trials``,
 python/src/trial_runner.cpp).
 
@@ -7,9 +7,9 @@ With one worker and no executor the work runs in this process. Otherwise it runs
 the user's (``executor=``: any ``concurrent.futures.Executor``, never shut down here), or one
 of ``workers`` workers made at the first work and ended by ``close`` (``make_executor``;
 gpfd.workers.WorkerPool by default, whose workers are fresh interpreters). Both go through
-gpfd._jobs: each worker gets the environment's factory and the config text once; a task carries
-only the packed genomes or feature sets and the seeds. A fitness depends on its genome and seed
-only, a curve on its features, budget and seed (and, on a vector form seeded as a whole, the
+gpfd.discovery._jobs: each worker gets the environment's factory and the config text once; a task
+carries only the packed genomes or feature sets and the seeds. A fitness depends on its genome and
+seed only, a curve on its features, budget and seed (and, on a vector form seeded as a whole, the
 lockstep group, whose make-up never depends on the workers), so any executor and any number of
 workers give the same run.
 """
@@ -23,9 +23,11 @@ from typing import Any
 
 import gymnasium as gym
 
-from gpfd import _deadline, _jobs, vector_cache, vector_source
+from gpfd.adapters import sources, vector_cache
+from gpfd.discovery import _jobs
 from gpfd.errors import InputError
-from gpfd.workers import WorkerError, WorkerPool
+from gpfd.execution import _deadline
+from gpfd.execution.workers import WorkerError, WorkerPool
 
 # Fitness evaluations played together in one vector environment (a lockstep group) where the
 # environment has a vector form: 30 lanes each for cartpole-quick's 3 trials of 10 episodes.
@@ -109,7 +111,7 @@ class Evaluator:
         """Whether the environment has a vector form, whose calls go in lockstep groups
         (_lockstep_groups), each group's episodes in one vector environment
         (python/src/lockstep_group.hpp)."""
-        return vector_source.has_vector_form(self.name)
+        return sources.has_vector_form(self.name)
 
     def _groups(self, tasks: list) -> list[list]:
         """Lockstep groups where the environment has a vector form, else one task each."""
@@ -140,8 +142,8 @@ class Evaluator:
 
     def _map(self, function: Callable[..., Any], config_text: str, work: list[tuple]) -> Iterator:
         """function(config_text, *args) for each args of work, in order, as each is done: here,
-        or on the executor under the jobs of gpfd._jobs. InputError where the config sets a
-        task_timeout and the work would run here (nothing could end a hung step)."""
+        or on the executor under the jobs of gpfd.discovery._jobs. InputError where the config sets
+        a task_timeout and the work would run here (nothing could end a hung step)."""
         if self.in_process:
             if _deadline.seconds_of(config_text) is not None:
                 raise InputError(f"{self.in_process_timeout_text()} (task_timeout)")

@@ -5,9 +5,9 @@ from __future__ import annotations
 from typing import Any
 
 from gpfd import _core
-from gpfd.envs import GpfdEnv
-from gpfd.registry import is_builtin
-from gpfd.user_env import state_names
+from gpfd.adapters.user_env import state_names
+from gpfd.environments.gpfd_env import GpfdEnv
+from gpfd.environments.registry import is_builtin
 
 
 def expectation(env: Any, variables: Any, params: dict) -> tuple[str, list | None, list | None]:

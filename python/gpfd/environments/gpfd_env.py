@@ -20,9 +20,10 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
-from gpfd import _core, render
-from gpfd.registry import is_builtin
-from gpfd.twins import TWINS
+from gpfd import _core
+from gpfd.environments import render
+from gpfd.environments.registry import is_builtin
+from gpfd.environments.twins import TWINS
 
 # Gymnasium ids of the built-in environments; any other registered gpfd environment gets
 # gpfd/<Name>-v0.
@@ -138,7 +139,7 @@ class GpfdEnv(gym.Env):
     @property
     def native_engine(self) -> _core.EnvBatch:
         """The C++ engine that steps this environment (one instance), which gpfd's own drivers
-        (gpfd.vector_source.native_single) step without Python."""
+        (gpfd.adapters.sources.native_single) step without Python."""
         return self._core
 
     @property

@@ -22,8 +22,9 @@ import numpy as np
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
-from gpfd import _core, render
-from gpfd.envs import action_space, check_params, gym_id, observation_space, seed64
+from gpfd import _core
+from gpfd.environments import render
+from gpfd.environments.gpfd_env import action_space, check_params, gym_id, observation_space, seed64
 
 _MODES = {
     AutoresetMode.NEXT_STEP: "next_step",
@@ -162,8 +163,8 @@ class GpfdVectorEnv(VectorEnv):
     @property
     def native_engine(self) -> _core.EnvBatch:
         """The C++ engine that steps every instance (one call per step), which a lockstep group
-        (python/src/vector_hub.cpp, through gpfd.vector_source.VectorAdapter) steps without
-        Python."""
+        (python/src/vector_hub.cpp, through gpfd.adapters.vector_adapter.VectorAdapter) steps
+        without Python."""
         return self._core
 
     @property

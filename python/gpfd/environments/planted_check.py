@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gpfd._core import FeatureSet, InputError
-from gpfd.planted import PlantedVectorEnv, Task, task
+from gpfd.environments.planted import PlantedVectorEnv, Task, task
 
 #: R^2 at or above which a needed feature counts as carried.
 THRESHOLD = 0.99

@@ -19,8 +19,8 @@ from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
 from gpfd import _core
-from gpfd.twins import TWINS, reference, seed_words, twin_params
-from gpfd.vector import lane_seeds, parse_autoreset_mode, with_mask
+from gpfd.environments.gpfd_vector import lane_seeds, parse_autoreset_mode, with_mask
+from gpfd.environments.twins import TWINS, reference, seed_words, twin_params
 
 _MODES = {
     AutoresetMode.NEXT_STEP: "next_step",

@@ -3,14 +3,14 @@
 
 Each ``submit(fn, *args)`` is one Ray task of one CPU, its result a ``concurrent.futures.Future``
 (``ObjectRef.future()``). Ray runs a task again when its worker dies (``max_retries``, 3 by
-default), so a lost worker loses no evaluation; gpfd's jobs (gpfd._jobs) ship the environment once
-to each Ray worker process. The executor uses the Ray cluster this process is connected to
-(``ray.init(...)`` first; without it, the first submit starts a local one, as Ray does), and
-``shutdown`` leaves the cluster as it is; ``shutdown(cancel_futures=True)`` (what gpfd calls when
-a run fails or is interrupted) cancels, with ``ray.cancel``, every task of this executor not yet
-done, so that no work of the run goes on on the cluster. With the config key ``task_timeout`` a
-task that runs past it ends its Ray worker process (gpfd._deadline), and Ray runs it again
-(``max_retries``), then fails it.
+default), so a lost worker loses no evaluation; gpfd's jobs (gpfd.discovery._jobs) ship the
+environment once to each Ray worker process. The executor uses the Ray cluster this process is
+connected to (``ray.init(...)`` first; without it, the first submit starts a local one, as Ray
+does), and ``shutdown`` leaves the cluster as it is; ``shutdown(cancel_futures=True)`` (what gpfd
+calls when a run fails or is interrupted) cancels, with ``ray.cancel``, every task of this executor
+not yet done, so that no work of the run goes on on the cluster. With the config key
+``task_timeout`` a task that runs past it ends its Ray worker process (gpfd.execution._deadline),
+and Ray runs it again (``max_retries``), then fails it.
 """
 
 from __future__ import annotations

@@ -1,11 +1,11 @@
 """gpfd's own pool of worker processes: a ``concurrent.futures.Executor`` whose workers are fresh
-interpreters running gpfd._worker, never the user's ``__main__``.
+interpreters running gpfd.execution._worker, never the user's ``__main__``.
 
 A script without ``if __name__ == "__main__":``, code piped to ``python -`` and a notebook all work
 alike: what a worker runs (the environment's factory, the task functions) travels to it pickled by
 cloudpickle, which pickles ``__main__``'s classes and functions by value. Each worker runs the
 initializer once, then one task at a time (gpfd.evaluator sends the environment's factory once
-per worker with its tasks instead: gpfd._jobs).
+per worker with its tasks instead: gpfd.discovery._jobs).
 
 A worker that dies is replaced by a fresh one (set up again), which runs the task it was running
 again: a lost worker loses no task. A task that has lost ``attempts`` workers (3: it may be what
@@ -13,9 +13,9 @@ kills them) fails with WorkerError, naming the last worker and how it ended. A w
 start or set up breaks the pool: every task not yet done fails with WorkerError, and so does
 every later submit. Workers run in a session of their own and ignore SIGINT: Ctrl-C reaches only
 this process, which ends them (``terminate``); they die with this process, also when it is
-SIGKILLed in the middle of a task (gpfd._worker). A task that runs past its config's
-``task_timeout`` ends its worker (gpfd._deadline), which is then lost as above, the error naming
-where the task hung. gpfd.evaluator runs the discovery's work on such an executor.
+SIGKILLed in the middle of a task (gpfd.execution._worker). A task that runs past its config's
+``task_timeout`` ends its worker (gpfd.execution._deadline), which is then lost as above, the error
+naming where the task hung. gpfd.evaluator runs the discovery's work on such an executor.
 """
 
 from __future__ import annotations
@@ -34,7 +34,7 @@ from typing import Any
 
 import cloudpickle
 
-from gpfd import _frames
+from gpfd.execution import _frames
 
 
 class WorkerError(RuntimeError):
@@ -94,7 +94,7 @@ class _Worker:
                 [
                     sys.executable,
                     "-m",
-                    "gpfd._worker",
+                    "gpfd.execution._worker",
                     str(task_read),
                     str(result_write),
                     str(os.getpid()),
@@ -116,7 +116,7 @@ class _Worker:
 
     def call(self, payload: bytes) -> tuple:
         """Sends one task and returns its reply; WorkerError when the worker ends first (also
-        past the task's deadline, gpfd._deadline: naming where the task was)."""
+        past the task's deadline, gpfd.execution._deadline: naming where the task was)."""
         try:
             _frames.send_bytes(self.tasks, payload)
             reply = _frames.receive(self.results)
@@ -224,8 +224,8 @@ class WorkerPool(Executor):
     def _serve(self) -> None:
         """A thread per worker: starts it (and its replacements), sets it up, then runs the
         queue's tasks one at a time until a None; returns once its worker has exited. A worker
-        ends with the thread that started it (gpfd._worker's parent-death signal), so this thread
-        outlives it: the worker closes what it holds first."""
+        ends with the thread that started it (gpfd.execution._worker's parent-death signal), so
+        this thread outlives it: the worker closes what it holds first."""
         try:
             worker = self._start_worker()
         except BaseException as e:
