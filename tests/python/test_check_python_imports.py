@@ -39,6 +39,19 @@ def plant(package, module, text):
     return before.count("\n") + 1
 
 
+def planted_failure(repo, root, module, text):
+    """The check's lines on a copy of the package with `text` planted in `module`; it must fail."""
+    plant(copy_package(repo, root), module, text)
+    rc, out = check(repo, root)
+    assert rc == 1
+    return out
+
+
+def names(out, file, *words):
+    """Whether a line of `out` is about `file` and holds every one of `words`."""
+    return any(line.startswith(file + ":") and all(w in line for w in words) for line in out)
+
+
 def test_the_package_is_layered_without_cycles(repo, tmp_path):
     copy_package(repo, tmp_path)
     assert check(repo, tmp_path) == (0, [])
@@ -91,47 +104,29 @@ def test_an_import_of_a_higher_subpackage_fails_with_its_line_and_the_cycle(repo
 
 
 def test_an_import_of_a_higher_layer_within_a_subpackage_fails(repo, tmp_path):
-    package = copy_package(repo, tmp_path)
-    plant(package, "adapters.sources", "\n\ndef late():\n    from gpfd.adapters import user_env\n")
-    rc, out = check(repo, tmp_path)
-    assert rc == 1
-    assert any(
-        line.startswith("python/gpfd/adapters/sources.py:")
-        and "adapters.sources (layer 3.1) may import only lower layers and its own, "
-        "adapters.user_env is in layer 3.3"
-        in line
-        for line in out
-    )
+    text = "\n\ndef late():\n    from gpfd.adapters import user_env\n"
+    out = planted_failure(repo, tmp_path, "adapters.sources", text)
+    rule = "adapters.sources (layer 3.1) may import only lower layers and its own, "
+    assert names(out, "python/gpfd/adapters/sources.py", rule + "adapters.user_env is in layer 3.3")
 
 
 def test_a_subpackage_importing_a_public_path_fails(repo, tmp_path):
     # gpfd.envs, a path users have, is above every subpackage: the code imports the code.
-    package = copy_package(repo, tmp_path)
-    plant(package, "environments.gpfd_vector", "\nfrom gpfd.envs import GpfdEnv\n")
-    rc, out = check(repo, tmp_path)
-    assert rc == 1
-    assert any(
-        line.startswith("python/gpfd/environments/gpfd_vector.py:") and "imports gpfd.envs" in line
-        for line in out
-    )
+    text = "\nfrom gpfd.envs import GpfdEnv\n"
+    out = planted_failure(repo, tmp_path, "environments.gpfd_vector", text)
+    assert names(out, "python/gpfd/environments/gpfd_vector.py", "imports gpfd.envs")
 
 
 def test_a_name_of_the_package_itself_is_an_import_of_its_top(repo, tmp_path):
     # from gpfd import EnvError runs gpfd/__init__.py, which imports everything.
-    package = copy_package(repo, tmp_path)
-    plant(package, "adapters.sources", "\nfrom gpfd import EnvError\n")
-    rc, out = check(repo, tmp_path)
-    assert rc == 1
-    assert any("adapters/sources.py:" in line and "imports gpfd.__init__" in line for line in out)
+    out = planted_failure(repo, tmp_path, "adapters.sources", "\nfrom gpfd import EnvError\n")
+    assert names(out, "python/gpfd/adapters/sources.py", "imports gpfd.__init__")
     assert any("import cycle: __init__ -> " in line for line in out)
 
 
 def test_relative_imports_count(repo, tmp_path):
-    package = copy_package(repo, tmp_path)
     text = "\nfrom .. import user_env\nfrom ..discovery.runs import evolve\nfrom . import render\n"
-    plant(package, "environments.registry", text)
-    rc, out = check(repo, tmp_path)
-    assert rc == 1
+    out = planted_failure(repo, tmp_path, "environments.registry", text)
     wrong = [line for line in out if line.startswith("python/gpfd/environments/registry.py:")]
     assert len(wrong) == 2  # render shares registry's layer.
     assert "imports gpfd.user_env" in wrong[0] and "imports gpfd.discovery.runs" in wrong[1]
