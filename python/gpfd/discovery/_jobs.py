@@ -18,11 +18,11 @@ the task's future never completes) gets its lost tasks sent again: once no resul
 come for ``max(LOST_AFTER, LOST_FACTOR x`` the longest any task of its job took from submission
 to result``)``, each task of the round out that long, on a worker, is sent again (job attached);
 the first result of a task is the one taken, its other copies cancelled or ignored. Such an
-executor cannot replace a worker that a task's ``task_timeout`` ended (gpfd._deadline): with a
-deadline T, every task ends within T + GRACE (or its worker does), so a round that has had no
-result for ``2 x (T + GRACE + LOST_AFTER)`` (from the silence that sends lost tasks again, at
-least) has no worker left that takes its tasks, and stops with WorkerError (each ended worker has
-named its environment's step on its stderr, the job's).
+executor cannot replace a worker that a task's ``task_timeout`` ended
+(gpfd.execution._deadline): with a deadline T, every task ends within T + GRACE (or its worker
+does), so a round that has had no result for ``2 x (T + GRACE + LOST_AFTER)`` (from the silence
+that sends lost tasks again, at least) has no worker left that takes its tasks, and stops with
+WorkerError (each ended worker has named its environment's step on its stderr, the job's).
 
 A task's result depends on its job, genomes and seeds only, never on where it ran or how many
 times it was sent: the same seed gives the same run on any executor.
@@ -42,8 +42,10 @@ from typing import Any
 
 import cloudpickle
 
-from gpfd import _core, _deadline, user_env
-from gpfd.workers import WorkerError
+from gpfd import _core
+from gpfd.adapters import user_env
+from gpfd.execution import _deadline
+from gpfd.execution.workers import WorkerError
 
 KEEP_JOBS = 16
 KEEP_ENVS = 4
@@ -93,7 +95,7 @@ def run(key: str, payload: bytes | None, function: Callable[..., Any], *args: An
     """A task, in a worker: ``function(config_text, *args)`` under the job `key`, with the job's
     environment registered under its name; NeedJob when this process holds no such job and
     `payload` (the job, from Jobs.payload) is None. Past the config's ``task_timeout`` the
-    process ends (gpfd._deadline): the executor takes its worker as lost."""
+    process ends (gpfd.execution._deadline): the executor takes its worker as lost."""
     with _lock:
         if key not in _jobs or _jobs[key][0] not in _envs:
             if payload is None:
