@@ -20,6 +20,8 @@ if importlib.util.find_spec("stable_baselines3") is None:
     sys.modules["stable_baselines3.common"] = types.ModuleType("stable_baselines3.common")
     sys.modules[_vec_env.__name__] = _vec_env
 
+from sphinx.pycode import ModuleAnalyzer  # noqa: E402
+
 import gpfd  # noqa: E402
 
 project = "gpfd"
@@ -47,12 +49,26 @@ _PARAGRAPH = re.compile(r"^(\w+(?:, \w+)*): (.*)$")
 _attribute_docs: dict[str, list[str]] = {}
 
 
+# An import path users have (gpfd/planted_check.py) re-exports the module where the code is, which
+# it names `_code` (gpfd.environments.planted_check): a constant's "#:" comment is there.
+def _code_comment(name: str) -> list[str]:
+    """The comment of the constant `name` (gpfd.planted_check.THRESHOLD) where its code is."""
+    module, _, attribute = name.rpartition(".")
+    code = getattr(sys.modules.get(module), "_code", None)
+    if code is None:
+        return []
+    comments = ModuleAnalyzer.for_module(code.__name__).find_attr_docs()
+    return list(comments.get(("", attribute), []))
+
+
 def _parameter_fields(
     app: Any, what: str, name: str, obj: Any, options: Any, lines: list[str]
 ) -> None:
     if what in ("data", "attribute", "property"):
         if obj is not None and obj.__doc__ == type(obj).__doc__:
             lines.clear()  # a constant's docstring is its type's (int's, str's): the page says more
+        if what == "data" and not lines:
+            lines += _code_comment(name)
         # A property bound with nanobind: its type from its getter's signature, "def (self) -> T".
         signature = getattr(getattr(obj, "fget", None), "__nb_signature__", None)
         if signature:

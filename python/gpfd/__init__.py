@@ -14,22 +14,30 @@ The core is gpfd's C++ library; this package is a thin front over it:
   discovery, GP's fitness, the test protocol and results directories, as ``gpfd evolve`` and
   ``gpfd assess`` run them; ``evolve`` also runs on any Gymnasium environment with a Box
   observation space, stepped in Python (where it has a vector form, ``VectorFactory`` and
-  gpfd.vector_source, the lanes of up to 16 evaluations at once).
+  gpfd.adapters.sources, the lanes of up to 16 evaluations at once).
 - ``signed_rank_test`` (gpfd.stats): the Wilcoxon signed-rank test of gpfd's method-level
   verdict, for a user's own paired comparisons.
 
 docs/python.md in gpfd's repository is the guide.
 """
 
-from gpfd import envs as _envs
-from gpfd import planted as _planted
-from gpfd import twins as _twins
-from gpfd import wrappers
+from gpfd import wrappers  # The public module, gpfd/wrappers.py.
 from gpfd._core import FeatureSet, InputError, __version__
-from gpfd.discovery import Run, assess, builtin_configs, evolve, fitness, fitness_of_each, load_run
+from gpfd.discovery.runs import (
+    Run,
+    assess,
+    builtin_configs,
+    evolve,
+    fitness,
+    fitness_of_each,
+    load_run,
+)
+from gpfd.discovery.stats import signed_rank_test
+from gpfd.environments import gpfd_env as _envs
+from gpfd.environments import planted as _planted
+from gpfd.environments import twins as _twins
 from gpfd.errors import EnvError
-from gpfd.stats import signed_rank_test
-from gpfd.vector_source import VectorFactory
+from gpfd.vector_source import VectorFactory  # The module its class names (adapters/sources.py).
 
 _envs.register_all()
 _planted.register_all()

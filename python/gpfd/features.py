@@ -1,39 +1,9 @@
-"""What a features text is read against, for ``FeatureSet.parse`` and ``FeatureSet.load``."""
+# gpfd.features, an import path users have (what a features text is read against): the public names
+# and the docstring of gpfd.discovery.features, where the code is (scripts/check-python-imports).
+from gpfd.discovery import features as _code
+from gpfd.discovery.features import (
+    expectation,
+)
 
-from __future__ import annotations
-
-from typing import Any
-
-from gpfd import _core
-from gpfd.envs import GpfdEnv
-from gpfd.registry import is_builtin
-from gpfd.user_env import state_names
-
-
-def expectation(env: Any, variables: Any, params: dict) -> tuple[str, list | None, list | None]:
-    """(environment name, variables, fallback variables) for a features text.
-
-    The file is refused when it states another environment or other variables than given. The
-    fallback variables (a gpfd environment's, with default parameters) are used only when the
-    file names none.
-    """
-    names = None if variables is None else [str(v) for v in variables]
-    if env is None:
-        if params:
-            raise TypeError(f"environment parameters {sorted(params)} need env=")
-        return "", names, None
-    if isinstance(env, str):
-        if is_builtin(env):
-            own = list(_core.EnvBatch(env, params).state_names)
-            return (env, names or own, None) if params else (env, names, own)
-        if params:
-            raise TypeError(f"parameters are for gpfd's environments; {env!r} is not one")
-        return env, names, None
-    # A Gymnasium environment, possibly wrapped.
-    if params:
-        raise TypeError("give parameters with a gpfd environment name, not with an environment")
-    base = getattr(env, "unwrapped", env)
-    if isinstance(base, GpfdEnv):
-        return base.gpfd_name, names or list(base.state_names), None
-    spec = getattr(env, "spec", None)
-    return (spec.id if spec is not None else ""), names or state_names(env.observation_space), None
+__doc__ = _code.__doc__
+__all__ = ["expectation"]

@@ -56,7 +56,7 @@ Params paramsFromDict(const nb::dict& values, const std::string& where);
 nb::dict typedParams(const Params& params, const std::vector<ParamSpec>& specs);
 
 // The batched form of the environment registered from Python as `name`: its vector form, where
-// gpfd.vector_source finds one (python_vector_environment.cpp).
+// gpfd.adapters.sources finds one (python_vector_environment.cpp).
 env::BatchForm pythonVectorForm(const std::string& name);
 
 void bindFeatureSet(nb::module_& m);

@@ -1,6 +1,7 @@
 // python: what gpfd._core.EnvBatch adds for pickling (__getstate__, __setstate__: copy.deepcopy
-// and pickle, mid-episode, bit for bit) and for drawing Tetris (tetris_board; gpfd/render.py
-// draws the rest from the state variables). Added to the class that env_bindings.cpp binds.
+// and pickle, mid-episode, bit for bit) and for drawing Tetris (tetris_board;
+// gpfd/environments/render.py draws the rest from the state variables). Added to the class that
+// env_bindings.cpp binds.
 #include <fmt/format.h>
 #include <nanobind/stl/map.h>
 #include <nanobind/stl/string.h>

@@ -1,6 +1,6 @@
-// python: the binding of gpfd.FeatureSet (python/gpfd/features.py adds load and parse). Calling a
-// set on observations runs the JIT-compiled genome: evaluate() for one state, the batch kernel for
-// a matrix of states, with the GIL released for batches.
+// python: the binding of gpfd.FeatureSet (python/gpfd/discovery/features.py adds load and parse).
+// Calling a set on observations runs the JIT-compiled genome: evaluate() for one state, the batch
+// kernel for a matrix of states, with the GIL released for batches.
 #include "feature_set.hpp"
 
 #include <fmt/format.h>
@@ -151,12 +151,12 @@ nb::object call(const FeatureSet& set, nb::handle obs, nb::handle out) {
   return result;
 }
 
-// parse/load: the expected environment and variables come from gpfd.features.expectation, which
-// knows gpfd's and Gymnasium's environments.
+// parse/load: the expected environment and variables come from gpfd.discovery.features.expectation,
+// which knows gpfd's and Gymnasium's environments.
 FeatureSet fromText(const std::string& text, const std::string& source, nb::handle env,
                     nb::handle variables, const nb::kwargs& params, const std::string& name) {
   const nb::tuple e = nb::cast<nb::tuple>(
-      nb::module_::import_("gpfd.features").attr("expectation")(env, variables, params));
+      nb::module_::import_("gpfd.discovery.features").attr("expectation")(env, variables, params));
   return FeatureSet(parseWithFallback(text, source, nb::cast<std::string>(e[0]),
                                       nb::cast<std::optional<expr::VariableNames>>(e[1]),
                                       nb::cast<std::optional<expr::VariableNames>>(e[2])),

@@ -1,8 +1,8 @@
 // python: a lockstep group: the fitness evaluations (or learning runs) of several feature sets
 // played as fibers of one thread (gpfd/fibers/scheduler.hpp), whose lockstep players share one
 // vector environment (vector_hub.hpp), so that one vector step advances the episodes of all of
-// them. On gpfd.vector_source's vector forms stepped in Python, where a step costs mostly per call
-// (NumPy, EnvPool), this is what spreads that cost over hundreds of lanes. Python itself never
+// them. On gpfd.adapters.sources's vector forms stepped in Python, where a step costs mostly per
+// call (NumPy, EnvPool), this is what spreads that cost over hundreds of lanes. Python itself never
 // runs on a member's fiber: every call into it goes to the thread's own stack (python_call.hpp), so
 // that groups play alike on every CPython (3.14 and later check the stack's bounds).
 #pragma once

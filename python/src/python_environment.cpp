@@ -2,7 +2,7 @@
 // assessment run on it unchanged. The Python side (gpfd.user_env.Adapter) checks the spaces and
 // every observation and turns the environment's exceptions into clear errors; this side holds the
 // GIL only while it calls Python. gpfd's own environments made from their Gymnasium ids step
-// through their C++ engine directly (gpfd.vector_source.native_single).
+// through their C++ engine directly (gpfd.adapters.sources.native_single).
 #include <fmt/format.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
@@ -103,11 +103,11 @@ class PythonEnvironment final : public env::Environment {
   }
 
  private:
-  // gpfd's own environment made from its Gymnasium id (gpfd.vector_source.native_single): its
+  // gpfd's own environment made from its Gymnasium id (gpfd.adapters.sources.native_single): its
   // C++ engine steps without Python, as GpfdEnv's reset and step call it.
   void bindNative() {
     const nb::object native =
-        nb::module_::import_("gpfd.vector_source").attr("native_single")(name_, adapter_);
+        nb::module_::import_("gpfd.adapters.sources").attr("native_single")(name_, adapter_);
     if (native.is_none()) return;
     native_ = nb::cast<EnvBatch*>(native[0]);
     roundToFloat_ = nb::cast<bool>(native[1]);
@@ -160,10 +160,11 @@ void bindPythonEnvironments(nb::module_& m) {
         env::EnvInfo info;
         info.name = name;
         info.description = description;
-        info.batch = pythonVectorForm(name);  // Where gpfd.vector_source finds a vector form.
+        info.batch = pythonVectorForm(name);  // Where gpfd.adapters.sources finds a vector form.
         info.make = [name](const Params&) {
           return withPython([&]() -> std::unique_ptr<env::Environment> {
-            nb::object adapter = nb::module_::import_("gpfd.user_env").attr("make_adapter")(name);
+            nb::object adapter =
+                nb::module_::import_("gpfd.adapters.user_env").attr("make_adapter")(name);
             return std::make_unique<PythonEnvironment>(name, std::move(adapter));
           });
         };

@@ -1,8 +1,8 @@
 // python: the vector form of an environment stepped in Python (a Gymnasium VectorEnv: a
 // vector_entry_point, an EnvPool task or the user's factory) as gpfd's batched environment
 // (env/batch.hpp), so that the lockstep player advances all the episodes of a call with one call
-// of the vector environment's step per time step. gpfd.vector_source.VectorAdapter makes, seeds,
-// resets and checks the vector environment and words every error; vector_hub.cpp writes the
+// of the vector environment's step per time step. gpfd.adapters.vector_adapter.VectorAdapter makes,
+// seeds, resets and checks the vector environment and words every error; vector_hub.cpp writes the
 // actions, calls step and reads what it returns. Made in a member of a lockstep group
 // (lockstep_group.hpp), the batched form plays its lanes in the group's one vector environment,
 // with those of the group's other fitness evaluations; elsewhere in a vector environment of its
@@ -81,7 +81,7 @@ env::BatchForm pythonVectorForm(const std::string& name) {
   form.available = [name](const env::Environment&) {
     return withPython([&] {
       return nb::cast<bool>(
-          nb::module_::import_("gpfd.vector_source").attr("has_vector_form")(name));
+          nb::module_::import_("gpfd.adapters.sources").attr("has_vector_form")(name));
     });
   };
   form.make = [name](const env::Environment& prototype,
@@ -93,7 +93,7 @@ env::BatchForm pythonVectorForm(const std::string& name) {
     auto makeHub = [&](std::size_t members) {
       return withPython([&] {
         nb::object adapter =
-            nb::module_::import_("gpfd.vector_source")
+            nb::module_::import_("gpfd.adapters.vector_adapter")
                 .attr("make_vector_adapter")(name, stateDim, choices, space.low, space.high);
         return std::make_shared<VectorHub>(std::move(adapter), stateDim, components, members);
       });

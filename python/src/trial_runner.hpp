@@ -1,7 +1,7 @@
 // python: batches of learning trials (validation, confirmation, assessment) on the worker
-// processes of an environment stepped in Python (gpfd.user_env.Evaluator), and what the workers
-// run. A curve depends only on its features, budget and seed (and, on a vector form seeded as a
-// whole, its lockstep group), so they are the curves that run::ThreadTrialRunner gives.
+// processes of an environment stepped in Python (gpfd.discovery.evaluator.Evaluator), and what the
+// workers run. A curve depends only on its features, budget and seed (and, on a vector form seeded
+// as a whole, its lockstep group), so they are the curves that run::ThreadTrialRunner gives.
 #pragma once
 
 #include <memory>
@@ -13,7 +13,7 @@
 
 namespace gpfd::python {
 
-// A runner over `evaluator` (gpfd.user_env.Evaluator): its `workers` and its
+// A runner over `evaluator` (gpfd.discovery.evaluator.Evaluator): its `workers` and its
 // run_trials(config_text, budget, [(features, seeds), ...]), which yields each task's curves in
 // order. Called without the GIL; takes it.
 std::shared_ptr<run::TrialRunner> pythonTrialRunner(nb::object evaluator);

@@ -1,7 +1,8 @@
-// python: one Gymnasium VectorEnv (made, reset and checked by gpfd.vector_source.VectorAdapter)
-// shared by the lockstep players of one or several fitness evaluations, so that one call of its
-// step advances the episodes of all of them (a lockstep group, lockstep_group.hpp; alone, a group
-// of one). Each player (member) plays its lanes in its own range of sub-environments.
+// python: one Gymnasium VectorEnv (made, reset and checked by
+// gpfd.adapters.vector_adapter.VectorAdapter) shared by the lockstep players of one or several
+// fitness evaluations, so that one call of its step advances the episodes of all of them (a
+// lockstep group, lockstep_group.hpp; alone, a group of one). Each player (member) plays its lanes
+// in its own range of sub-environments.
 //
 // Rounds: a member's resetAll or step waits (the members are fibers of one thread,
 // gpfd/fibers/scheduler.hpp) until every member still playing has asked for one, then the last to
@@ -39,7 +40,7 @@ class LockstepGroupFailed : public std::runtime_error {
 
 class VectorHub {
  public:
-  // `adapter` is a gpfd.vector_source.VectorAdapter. Called with the GIL held.
+  // `adapter` is a gpfd.adapters.vector_adapter.VectorAdapter. Called with the GIL held.
   VectorHub(nb::object adapter, std::size_t stateDim, std::size_t actionComponents,
             std::size_t members);
   ~VectorHub();

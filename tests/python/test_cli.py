@@ -43,7 +43,7 @@ def test_the_command_is_the_modules_build():
 def test_the_command_lists_the_environments():
     listed = run("envs")
     # The C++ ones: those registered from Python by tests run before are this process's only.
-    for name in filter(gpfd.registry.is_builtin, gpfd._core.env_names()):
+    for name in filter(gpfd.environments.registry.is_builtin, gpfd._core.env_names()):
         assert f"\n{name}: " in "\n" + listed
 
 

@@ -41,7 +41,7 @@ def test_timings_and_revisions_are_ignored(compare_outputs, tmp_path):
             "results in 2.9 s (gpfd 0.1.0 576aeb7c0d1e)\n",
         },
     )
-    assert compare_outputs.compare(old, new) == []
+    assert compare_outputs.output_compare.compare(old, new) == []
 
 
 def test_content_and_missing_files_are_named(compare_outputs, tmp_path):
@@ -59,7 +59,7 @@ def test_content_and_missing_files_are_named(compare_outputs, tmp_path):
             "run/front.csv": "size\n",
         },
     )
-    assert compare_outputs.compare(old, new) == [
+    assert compare_outputs.output_compare.compare(old, new) == [
         "only in old: run/best.features",
         "only in new: run/front.csv",
         "differs: run/generations.csv",

@@ -4,10 +4,10 @@ multihost: root only, ``pytest -m multihost``); skipped where mpi4py or mpiexec 
 
 A worker killed mid-generation (DiesOnce): under ``mpiexec -disable-auto-cleanup`` with each
 worker alone under its hydra proxy (its own host, or here its own host name with the fork
-launcher), the other ranks go on, gpfd sends the lost task again (gpfd._jobs) and the run ends as
-threads=1's; the script ends the job with ``MPI_Abort(0)``, since mpi4py's shutdown would wait for
-the dead rank for ever. Without that flag hydra ends the whole job, and resume= continues the
-directory to the same run. gpfd's rule for such tasks (taken as lost after a silence, sent
+launcher), the other ranks go on, gpfd sends the lost task again (gpfd.discovery._jobs) and the run
+ends as threads=1's; the script ends the job with ``MPI_Abort(0)``, since mpi4py's shutdown would
+wait for the dead rank for ever. Without that flag hydra ends the whole job, and resume= continues
+the directory to the same run. gpfd's rule for such tasks (taken as lost after a silence, sent
 again; a send that failed, sent again; none possible, a WorkerError) is also tested in this
 process with a double of mpi4py's pool (Losing), without MPI."""
 
@@ -28,7 +28,7 @@ import pytest
 
 import gpfd
 from conftest import script_module
-from gpfd import _jobs
+from gpfd.discovery import _jobs
 from gpfd.workers import WorkerError
 from point_env import Point
 from test_executor_faults import DiesOnce, evolve
@@ -118,7 +118,7 @@ class Losing(ThreadPoolExecutor):
     `refused` (a dead rank still taken as idle), and has none left after `left` submissions (the
     later ones queued, never started). Taken as losing tasks silently (its module's name)."""
 
-    __module__ = "mpi4py.test_double"  # gpfd._jobs.SILENT_LOSS names mpi4py's executors.
+    __module__ = "mpi4py.test_double"  # gpfd.discovery._jobs.SILENT_LOSS names mpi4py's executors.
 
     def __init__(self, lost: set[int], left: int | None = None, refused: Any = ()):
         super().__init__(2)
@@ -144,7 +144,7 @@ class Losing(ThreadPoolExecutor):
 
 
 def task_of(call: tuple) -> int:
-    """The task number (echo's value) of a call that gpfd._jobs.run makes of echo."""
+    """The task number (echo's value) of a call that gpfd.discovery._jobs.run makes of echo."""
     _, (_key, _payload, _function, value, *_) = call
     return value
 

@@ -1,6 +1,6 @@
 """gpfd.evolve and gpfd.assess on any concurrent.futures.Executor (executor=): the same run as
 threads=1 on ProcessPoolExecutor, gpfd's own WorkerPool, loky and Dask; the environment shipped
-once per worker (gpfd._jobs); the caller's executor left running; bad input named."""
+once per worker (gpfd.discovery._jobs); the caller's executor left running; bad input named."""
 
 import multiprocessing
 import os

@@ -1,6 +1,6 @@
-"""gpfd._jobs, the work shipped once: a worker without the job answers NeedJob and the driver
-sends the task again with it; the job kept, its environment unpickled once and registered only
-when it changes; the caches bounded; a round's results in order whatever the order of
+"""gpfd.discovery._jobs, the work shipped once: a worker without the job answers NeedJob and the
+driver sends the task again with it; the job kept, its environment unpickled once and registered
+only when it changes; the caches bounded; a round's results in order whatever the order of
 completion."""
 
 import threading
@@ -9,7 +9,8 @@ from concurrent.futures import Executor, Future, ThreadPoolExecutor
 
 import pytest
 
-from gpfd import _jobs, registry
+from gpfd.discovery import _jobs
+from gpfd.environments import registry
 from point_env import Point
 
 UNPICKLED: list[str] = []

@@ -1,7 +1,7 @@
-"""What gpfd.evolve shows while it runs (gpfd.progress): a progress bar by default on a terminal or
-in a notebook, only the verdict elsewhere, nothing with verbose=False, the command's text with
-verbose=True. No test depends on timing: what is checked is drawn at fixed points (a run's start,
-each generation, its end), never only by the half-second poll."""
+"""What gpfd.evolve shows while it runs (gpfd.discovery.progress): a progress bar by default on a
+terminal or in a notebook, only the verdict elsewhere, nothing with verbose=False, the command's
+text with verbose=True. No test depends on timing: what is checked is drawn at fixed points (a
+run's start, each generation, its end), never only by the half-second poll."""
 
 import fcntl
 import io
@@ -18,7 +18,7 @@ import pytest
 
 import gpfd
 from conftest import QUICK
-from gpfd import progress
+from gpfd.discovery import progress
 
 TINY: dict[str, Any] = {"population": 8, "generations": 2, "set": QUICK, "seed": 2}
 

@@ -1,5 +1,5 @@
-"""gpfd.protocol: every name the C++ sources look up on an adapter is a member of its protocol,
-the adapters have every member, and every module-level function C++ calls exists."""
+"""gpfd.adapters.protocol: every name the C++ sources look up on an adapter is a member of its
+protocol, the adapters have every member, and every module-level function C++ calls exists."""
 
 import re
 
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import gpfd
-from gpfd import protocol, user_env, vector_source
+from gpfd.adapters import protocol, sources, user_env, vector_adapter
 
 # The C++ file that drives each adapter, and the protocol it follows.
 DRIVERS = {
@@ -39,7 +39,7 @@ def test_the_module_functions_cpp_calls_exist(repo):
     calls = set()
     for path in (repo / "python" / "src").glob("*.cpp"):
         calls |= set(re.findall(r'import_\("(gpfd[\w.]*)"\)\s*\.attr\("(\w+)"\)', path.read_text()))
-    assert ("gpfd.user_env", "make_adapter") in calls
+    assert ("gpfd.adapters.user_env", "make_adapter") in calls
     for module, name in calls:
         assert callable(getattr(__import__(module, fromlist=[name]), name)), (module, name)
 
@@ -54,7 +54,7 @@ def test_the_adapter_has_every_member():
 def test_the_vector_adapter_has_every_member_after_a_reset():
     source = gpfd.VectorFactory(lambda n: gym.make_vec("CartPole-v1", n))
     user_env.register("python:protocol-test", source)
-    adapter = vector_source.make_vector_adapter("python:protocol-test", 4, 2, [], [])
+    adapter = vector_adapter.make_vector_adapter("python:protocol-test", 4, 2, [], [])
     try:
         obs = adapter.reset([1, 2])
         assert isinstance(adapter, protocol.VectorAdapterProtocol)
@@ -69,7 +69,7 @@ def test_gpfds_own_environments_name_their_engine():
     envs = gym.make_vec("gpfd/CartPole-v0", num_envs=3)
     assert isinstance(env.unwrapped.native_engine, gpfd._core.EnvBatch)  # type: ignore[attr-defined]
     assert isinstance(envs.native_engine, gpfd._core.EnvBatch)  # type: ignore[attr-defined]
-    user_env.register("gpfd/CartPole-v0", vector_source.GymnasiumSource("gpfd/CartPole-v0"))
+    user_env.register("gpfd/CartPole-v0", sources.GymnasiumSource("gpfd/CartPole-v0"))
     adapter = user_env.make_adapter("gpfd/CartPole-v0")
-    native = vector_source.native_single("gpfd/CartPole-v0", adapter)
+    native = sources.native_single("gpfd/CartPole-v0", adapter)
     assert native is not None and isinstance(native[0], gpfd._core.EnvBatch)

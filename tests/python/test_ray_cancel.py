@@ -11,7 +11,7 @@ from typing import Any
 import pytest
 
 import gpfd.ray
-from gpfd import _jobs
+from gpfd.discovery import _jobs
 from point_env import Point
 
 
@@ -113,8 +113,8 @@ def test_a_cancelled_future_cancels_its_task_once(ray):
 
 
 def test_a_failed_round_cancels_its_other_tasks_on_the_cluster(ray):
-    """A task's error stops gpfd's round (gpfd._jobs.Jobs.map), which cancels the others: Ray
-    cancels each."""
+    """A task's error stops gpfd's round (gpfd.discovery._jobs.Jobs.map), which cancels the others:
+    Ray cancels each."""
     executor = gpfd.ray.Executor()
     jobs = _jobs.Jobs("python:ray-cancel", Point)  # Never made: the stand-in runs nothing.
     ray.fails = 1

@@ -45,7 +45,7 @@ def given_sizes_run(out, generations, **more):
 def files_but_timings(directory: Path) -> dict[str, str]:
     """Every file of a run as scripts/compare-outputs compares them (timings out), run.json
     without the threads and the run it replays."""
-    timeless = script_module("compare-outputs").without_timings
+    timeless = script_module("compare-outputs").output_compare.without_timings
     files = {}
     for path in sorted(directory.rglob("*")):
         name = str(path.relative_to(directory))

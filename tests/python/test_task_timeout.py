@@ -1,8 +1,8 @@
-"""A hung environment does not hang the run (task_timeout, gpfd._deadline): past the deadline a
-task's worker ends and the task runs again as a lost worker's, giving the same run; a task that
-outlasts it on every try stops the run with WorkerError naming the environment and the step, and
-the directory resumes to the same run. Bad values, gpfd's own environments and work in this
-process are InputErrors."""
+"""A hung environment does not hang the run (task_timeout, gpfd.execution._deadline): past the
+deadline a task's worker ends and the task runs again as a lost worker's, giving the same run; a
+task that outlasts it on every try stops the run with WorkerError naming the environment and the
+step, and the directory resumes to the same run. Bad values, gpfd's own environments and work in
+this process are InputErrors."""
 
 import os
 import subprocess
@@ -15,7 +15,7 @@ from typing import Any
 import pytest
 
 import gpfd
-from gpfd import _deadline
+from gpfd.execution import _deadline
 from gpfd.workers import WorkerError
 from point_env import Point
 from test_executors import process_pool
@@ -164,7 +164,7 @@ def run_guarded(body: str, grace: float) -> subprocess.CompletedProcess:
     script = textwrap.dedent(
         f"""
         import re, time
-        from gpfd import _deadline
+        from gpfd.execution import _deadline
         _deadline.GRACE = {grace}
         with _deadline.guard(1.0):
             {body}

@@ -253,7 +253,9 @@ def test_fitness_on_the_twin_plays_the_episodes_gymnasium_plays(task, capsys):
 def test_a_whole_run_on_the_twin_gives_gymnasiums_files(tmp_path):
     """The same files, byte for byte, but for the environment's name and the timings."""
     small: dict[str, Any] = {"seed": 2, "population": 6, "generations": 2, "verbose": False}
-    small |= {"set": SEVERAL_EPISODES, "threads": 1}
+    # The learner's choice in 2 seeds and no random sets: it trains confirmation-length runs.
+    choice = {"learner.choose_seeds": 2, "learner.choose_random_sets": 0}
+    small |= {"set": SEVERAL_EPISODES | choice, "threads": 1}
     twin = gpfd.evolve(env="Pendulum-v1", out=tmp_path / "twin", **small)
     python = gpfd.evolve(env="Pendulum-v1", native=False, out=tmp_path / "python", **small)
     for name in ["validation.csv", "confirmation.csv"]:

@@ -12,12 +12,15 @@ from gymnasium import spaces
 
 import gpfd
 
-# Trials short enough for tests: 2 updates of 2 episodes of at most 50 steps.
+# Trials short enough for tests: 2 updates of 2 episodes of at most 50 steps; the learner's
+# choice in 2 seeds without random sets (it trains confirmation-length runs).
 TINY: dict[str, Any] = {
     "learner.params.updates": 2,
     "learner.params.episodes": 2,
     "learner.params.max_episode_steps": 50,
     "fitness.trials": 2,
+    "learner.choose_seeds": 2,
+    "learner.choose_random_sets": 0,
 }
 
 # One generation of six.

@@ -106,6 +106,27 @@ def test_validation_and_confirmation_run_on_the_workers_with_the_same_results(tm
     assert (one.info["threads"], two.info["threads"]) == (1, 2)  # The workers used.
 
 
+def small_user_env_config(folder: Path) -> Path:
+    """user-env's config with the learner's choice in 2 seeds of short trainings: gpfd.assess
+    takes no --set, and the shipped choice trains 30 confirmation-length runs and 24 random sets
+    (82,000 episodes here, minutes)."""
+    text = (Path(__file__).parents[2] / "configs" / "user-env.toml").read_text()
+    for old, new in [
+        ("choose_seeds = 10", "choose_seeds = 2"),
+        ("choose_random_sets = 8", "choose_random_sets = 0"),
+        (
+            "params = { updates = 15, episodes = 20, kl = 0.01 }",
+            "params = { updates = 2, episodes = 2 }",
+        ),
+        ("confirm_params = { updates = 30 }", "confirm_params = { updates = 2 }"),
+    ]:
+        assert old in text, old  # The shipped config changed: update this copy.
+        text = text.replace(old, new)
+    path = folder / "user-env-small.toml"
+    path.write_text(text)
+    return path
+
+
 def test_assess_runs_on_the_workers_with_the_same_table(tmp_path):
     log = tmp_path / "resets"
     log.mkdir()
@@ -113,6 +134,7 @@ def test_assess_runs_on_the_workers_with_the_same_table(tmp_path):
     common: dict[str, Any] = {
         "env": CountedPoint,
         "env_kwargs": {"directory": str(log)},
+        "config": small_user_env_config(tmp_path),
         "runs": 3,
         "budget": 2,
         "as_frame": False,

@@ -1,4 +1,4 @@
-"""Lockstep trials on vector forms (gpfd.vector_source): one vector step per time step for all
+"""Lockstep trials on vector forms (gpfd.adapters.sources): one vector step per time step for all
 lanes, under every autoreset mode, equal to the per-environment path where lanes are seeded alike,
 and every misbehaviour of a vector environment an EnvError naming the environment, the call, the
 step and the lane."""

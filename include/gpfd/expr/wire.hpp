@@ -1,6 +1,6 @@
 // expr: the one wire format of a genome, shared by every process that sends genomes to another
 // (the MPI master and workers, src/mpi/protocol.hpp; the Python worker processes,
-// python/src/discovery_bindings.cpp and trial_runner.cpp). Exact to the bit: decode(encode(g))
+// python/src/python_evaluator.cpp and trial_runner.cpp). Exact to the bit: decode(encode(g))
 // == g, every node field included, whatever the machine (all numbers little-endian).
 //
 // Version 1, one record per genome:

@@ -1,7 +1,7 @@
 """The deadline of a task in a worker process (the config key ``task_timeout``, seconds): a task
 that runs past it ends its process, so that the executor takes the worker as lost, replaces it
 and runs the task again (gpfd.workers.WorkerPool, Dask, Ray; mpi4py's pool sends it again after
-its silence, gpfd._jobs; a ProcessPoolExecutor breaks as a whole).
+its silence, gpfd.discovery._jobs; a ProcessPoolExecutor breaks as a whole).
 
 A hung environment holds its worker's main thread, so the deadline is watched by a thread of its
 own (which needs the GIL, as a step in Python code releases it now and then) and, for an
@@ -10,8 +10,8 @@ GRACE seconds later: it prints every thread's Python traceback to stderr and exi
 
 Before the process ends, the watching thread reports where the task was (``where``: the
 environment and the step of its episode that the adapters note as they call the environment):
-to stderr, or through ``report`` where the worker has a channel to its parent (gpfd._worker sends
-it to gpfd's pool, which names it in its WorkerError).
+to stderr, or through ``report`` where the worker has a channel to its parent
+(gpfd.execution._worker sends it to gpfd's pool, which names it in its WorkerError).
 """
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ from typing import Any
 GRACE = 5.0  # Seconds past the deadline before faulthandler ends a worker whose thread cannot.
 EXIT_CODE = 70  # A worker ended by its deadline exits with this code.
 
-#: The adapter (gpfd.user_env.Adapter, gpfd.vector_source.VectorAdapter) whose environment
+#: The adapter (gpfd.user_env.Adapter, gpfd.adapters.vector_adapter.VectorAdapter) whose environment
 #: call is under way or was the last, in this process: its ``where()`` names the environment and
 #: the call. The adapters set it as they call.
 current: Any = None

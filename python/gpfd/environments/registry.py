@@ -1,7 +1,7 @@
 """The environments registered from Python, in this process: each name's factory.
 
 A leaf module: gpfd.user_env registers (``gpfd.evolve(env=...)``, each worker process at its
-start), gpfd.vector_source and gpfd.envs read; gpfd's registry in C++ holds the same names and
+start), gpfd.adapters.sources and gpfd.envs read; gpfd's registry in C++ holds the same names and
 makes their instances through gpfd.user_env.make_adapter.
 """
 
@@ -13,7 +13,7 @@ from typing import Any
 from gpfd import _core
 
 # The environment factory of each registered name (a callable returning a Gymnasium
-# environment; a gpfd.vector_source.VectorSource where the environment has a vector form).
+# environment; a gpfd.adapters.sources.VectorSource where the environment has a vector form).
 _factories: dict[str, Callable[[], Any]] = {}
 
 

@@ -25,9 +25,12 @@ from typing import Any
 
 import numpy as np
 
-from gpfd import _core, progress, twins, user_env
+from gpfd import _core
 from gpfd._core import FeatureSet, InputError
-from gpfd.evaluator import Evaluator
+from gpfd.adapters import user_env
+from gpfd.discovery import progress
+from gpfd.discovery.evaluator import Evaluator
+from gpfd.environments import twins
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -487,7 +490,7 @@ def evolve(
         and confirmation) when stderr is a terminal or this runs in a Jupyter notebook, otherwise
         only the run's verdict, one line (as ``run.best.meta`` holds it); True: print what
         ``gpfd evolve`` prints, a line per generation and what the run returned; False: nothing.
-        What stops a run is always said (gpfd.progress).
+        What stops a run is always said (gpfd.discovery.progress).
 
     Ctrl-C stops the run at once and raises KeyboardInterrupt, its text saying how to continue:
     the run falls back to its last checkpoint (the end of the last complete generation;

@@ -1,4 +1,4 @@
-"""The wire of gpfd's worker processes (gpfd.workers, gpfd._worker): frames of an 8-byte
+"""The wire of gpfd's worker processes (gpfd.workers, gpfd.execution._worker): frames of an 8-byte
 big-endian length followed by that many bytes of cloudpickle, on a pipe's file descriptor."""
 
 from __future__ import annotations

@@ -37,8 +37,10 @@ from typing import Any
 
 import cloudpickle
 
-from gpfd import _core, _deadline, user_env
-from gpfd.workers import WorkerError
+from gpfd import _core
+from gpfd.adapters import user_env
+from gpfd.execution import _deadline
+from gpfd.execution.workers import WorkerError
 
 KEEP_JOBS = 16
 KEEP_ENVS = 4
@@ -88,7 +90,7 @@ def run(key: str, payload: bytes | None, function: Callable[..., Any], *args: An
     """A task, in a worker: ``function(config_text, *args)`` under the job `key`, with the job's
     environment registered under its name; NeedJob when this process holds no such job and
     `payload` (the job, from Jobs.payload) is None. Past the config's ``task_timeout`` the
-    process ends (gpfd._deadline): the executor takes its worker as lost."""
+    process ends (gpfd.execution._deadline): the executor takes its worker as lost."""
     with _lock:
         if key not in _jobs or _jobs[key][0] not in _envs:
             if payload is None:

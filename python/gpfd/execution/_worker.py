@@ -1,13 +1,13 @@
 """A worker process of gpfd's pool (gpfd.workers.WorkerPool), started as
-``python -m gpfd._worker TASKS RESULTS PARENT`` with two pipe descriptors and the pool's pid. It
-never runs the user's ``__main__``: everything it runs comes over the TASKS pipe (gpfd._frames),
-pickled by cloudpickle.
+``python -m gpfd.execution._worker TASKS RESULTS PARENT`` with two pipe descriptors and the pool's
+pid. It never runs the user's ``__main__``: everything it runs comes over the TASKS pipe
+(gpfd.execution._frames), pickled by cloudpickle.
 
 Frames in: first the parent's sys.path (a plain pickle), then one task per frame, cloudpickle of
 (function, args), the first being the pool's initializer. Frames out: one reply per task,
 ("ok", value) or ("error", pickled exception or None, its type's name, its text, the traceback),
-or ("expired", text) where the task ran past its deadline (gpfd._deadline) and the worker ends.
-The worker ends when the TASKS pipe ends (exit 0), or when the parent ends it. SIGINT is
+or ("expired", text) where the task ran past its deadline (gpfd.execution._deadline) and the worker
+ends. The worker ends when the TASKS pipe ends (exit 0), or when the parent ends it. SIGINT is
 ignored: Ctrl-C is the parent's to handle (it ends its workers). It dies with its parent, even
 in the middle of a task (a SIGKILLed parent closes nothing): on Linux by a parent-death signal
 (SIGKILL once the thread of the pool that started it ends: that thread outlives a worker it is
@@ -28,7 +28,7 @@ import traceback
 
 import cloudpickle
 
-from gpfd import _deadline, _frames
+from gpfd.execution import _deadline, _frames
 
 
 def _error_reply(error: BaseException) -> tuple:
@@ -91,7 +91,8 @@ def main(argv: list[str]) -> int:
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     tasks, results = int(argv[1]), int(argv[2])
     _die_with(int(argv[3]))
-    # A task past its deadline (gpfd._deadline): the pool is told where it was, then it ends.
+    # A task past its deadline (gpfd.execution._deadline): the pool is told where it was, then it
+    # ends.
     _deadline.report = lambda text: _frames.send(results, ("expired", text))
     try:
         sys.path[:] = pickle.loads(_frames.receive_bytes(tasks))
@@ -109,7 +110,7 @@ def main(argv: list[str]) -> int:
 def _close_environments() -> None:
     """Closes the vector environments this worker parked (gpfd.vector_cache), which os._exit
     would skip: their own processes and files end with them. An error is printed."""
-    cache = sys.modules.get("gpfd.vector_cache")  # Imported where one was parked.
+    cache = sys.modules.get("gpfd.adapters.vector_cache")  # Imported where one was parked.
     if cache is None:
         return
     try:
