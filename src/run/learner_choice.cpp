@@ -222,6 +222,16 @@ LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner&
       choice.randomSetsBest.push_back(bestQuarterOfRandomSets(task, genomes, runner));
       choice.merits.back() = std::max(choice.merits.back(), choice.randomSetsBest.back());
     }
+    // The first candidate's whole cost, measured, sizes the others again: the first training
+    // alone misjudges it where no learning plays longer episodes (Acrobot-v1's 500 steps) or
+    // the machine slows. The first candidate is kept where the others would pass the allowance.
+    const auto candidates = static_cast<double>(choice.candidates.size());
+    if (c == 0 && candidates > 1 && elapsed() * candidates > allowance) {
+      choice.cut = LearnerChoice::Cut::Candidates;
+      choice.predictedSeconds = elapsed() * candidates;
+      choice.candidates.resize(1);
+      break;
+    }
   }
   for (std::size_t c = 1; c < choice.merits.size(); ++c) {
     if (choice.merits[c] > choice.merits[choice.chosen]) choice.chosen = c;

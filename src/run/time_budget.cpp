@@ -218,6 +218,13 @@ double timeOneTraining(const ExperimentConfig& config, const DiscoveryOptions& o
   return wallSeconds([&] { runner.run(task, batch, {}); });
 }
 
+double trialSecondsFrom(const ExperimentConfig& config, double seconds,
+                        LearningTask::Budget budget) {
+  const double trial = budgetUnits(config, LearningTask::Budget::Trial);
+  const double units = budgetUnits(config, budget);
+  return trial > 0.0 && units > 0.0 ? seconds * trial / units : seconds;
+}
+
 void refuseBeforeMeasuring(const ExperimentConfig& config, double oneTraining, int workers,
                            double seconds, const BudgetSpent& spent, const std::string& where,
                            int runs) {

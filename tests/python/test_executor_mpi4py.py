@@ -32,6 +32,7 @@ from gpfd.discovery import _jobs
 from gpfd.workers import WorkerError
 from point_env import Point
 from test_executor_faults import DiesOnce, evolve
+from test_task_timeout import TIMEOUT, reference_files, resumed_mended
 from test_user_env_workers import SMALL, run_files
 
 HERE = Path(__file__).resolve().parent
@@ -67,6 +68,36 @@ if __name__ == "__main__":
                     **COMMON, executor=MPIPoolExecutor(),
                     callback=arm_after_generation_0(Path(flags)), out=out, verbose=False)
         code = 0
+    except BaseException:
+        traceback.print_exc()
+    sys.stdout.flush()
+    sys.stderr.flush()
+    MPI.COMM_WORLD.Abort(code)
+"""
+# A run on Hangs (test_task_timeout) armed after generation 0 under task_timeout=SECONDS, its
+# step hung in the first worker to step (once) or in every one; a WorkerError written to
+# TMP/NAME-error.txt (output to stdout may be cut short by MPI_Abort). This
+# process gives its workers up sooner than gpfd does by default (LOST_AFTER, GRACE: 1 s).
+HANG_SCRIPT = """
+import sys, traceback
+from pathlib import Path
+from mpi4py import MPI
+from mpi4py.futures import MPIPoolExecutor
+from gpfd.discovery import _jobs
+from gpfd.execution import _deadline
+from gpfd.workers import WorkerError
+from test_task_timeout import COMMON, evolve
+
+if __name__ == "__main__":
+    tmp, name, once, seconds = Path(sys.argv[1]), sys.argv[2], sys.argv[3] == "once", sys.argv[4]
+    _deadline.GRACE = _jobs.LOST_AFTER = 1.0
+    code = 1
+    try:
+        evolve(tmp, name, once=once, arm=True, **COMMON, executor=MPIPoolExecutor(),
+               task_timeout=float(seconds))
+        code = 0
+    except WorkerError as e:
+        (tmp / f"{name}-error.txt").write_text(str(e))
     except BaseException:
         traceback.print_exc()
     sys.stdout.flush()
@@ -364,3 +395,49 @@ def test_mpi4py_pool_across_namespaced_hosts_loses_no_evaluation_when_a_worker_i
         assert 'multihost: fault {"kind": "link", "rank": 2, "time"' in done.stdout
     assert LOST in done.stderr
     assert run_files(tmp_path / "mpi") == reference
+
+
+@pytest.fixture(scope="module")
+def hung_reference(tmp_path_factory) -> dict[str, str]:
+    return reference_files(tmp_path_factory.mktemp("ref"))
+
+
+def run_hang_script(tmp_path: Path, name: str, once: bool, seconds: float):
+    """HANG_SCRIPT under mpiexec, each of its two worker ranks alone under its proxy (a rank ended
+    by its deadline ends only itself), writing tmp_path/NAME."""
+    env = mpi_library(tmp_path)
+    mpiexec = [mpiexec_or_skip(), "-disable-auto-cleanup", *EACH_RANK_ITS_PROXY, "-n", "3"]
+    script = tmp_path / "hang.py"
+    script.write_text(HANG_SCRIPT)
+    program = [sys.executable, "-m", "mpi4py.futures", str(script), str(tmp_path), name]
+    return subprocess.run(
+        [*mpiexec, *program, "once" if once else "every", str(seconds)],
+        env=env,
+        timeout=300,
+        capture_output=True,
+        text=True,
+    )
+
+
+def test_mpi4py_pool_runs_a_task_hung_once_again_on_another_rank(tmp_path, hung_reference):
+    done = run_hang_script(tmp_path, "mpi", once=True, seconds=TIMEOUT)
+    assert done.returncode == 0, done.stdout[-3000:] + done.stderr[-3000:]
+    # A rank hung; its task, silent, was sent again to the other (whether the hung rank's
+    # deadline ended it before the job's end depends on the timing).
+    assert (tmp_path / "mpi-flags/hung").exists()
+    assert run_files(tmp_path / "mpi") == hung_reference
+
+
+def test_mpi4py_pool_with_every_rank_hung_stops_and_resumes(tmp_path, hung_reference):
+    """Each rank's deadline ends it and mpi4py's pool cannot replace it: the run stops with a
+    WorkerError naming the environment, each rank having printed its step to the job's stderr;
+    the directory resumes (on threads) to the same run."""
+    done = run_hang_script(tmp_path, "mpi", once=False, seconds=3)
+    assert done.returncode != 0
+    error = tmp_path / "mpi-error.txt"
+    assert error.exists(), done.stdout + done.stderr
+    said = error.read_text()
+    assert "task of python:Hangs ends within task_timeout=3 s" in said, said
+    assert "resume= continues" in said, said
+    assert "task_timeout=3 s in python:Hangs: step " in done.stderr, done.stderr[-3000:]
+    assert resumed_mended(tmp_path / "mpi") == hung_reference

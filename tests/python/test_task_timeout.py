@@ -4,7 +4,9 @@ task that outlasts it on every try stops the run with WorkerError naming the env
 step, and the directory resumes to the same run. Bad values, gpfd's own environments and work in
 this process are InputErrors."""
 
+import json
 import os
+import re
 import subprocess
 import sys
 import textwrap
@@ -64,13 +66,36 @@ def evolve(tmp_path: Path, name: str, once: bool, arm: bool, **options: Any) -> 
     )
 
 
-@pytest.fixture(scope="module")
-def reference(tmp_path_factory) -> dict[str, str]:
-    """The run on gpfd's pool with the deadline, nothing hung."""
-    tmp = tmp_path_factory.mktemp("ref")
+def with_deadline(files: dict[str, str], seconds: float) -> dict[str, str]:
+    """A run's files (run_files) as they read with task_timeout = `seconds` in its config: a run
+    under another deadline is otherwise the same run."""
+    line = re.compile(r"^task_timeout = .*$", re.MULTILINE)
+    assert line.search(files["config.toml"]), files["config.toml"]
+    return {**files, "config.toml": line.sub(f"task_timeout = {seconds:.1f}", files["config.toml"])}
+
+
+def reference_files(tmp: Path) -> dict[str, str]:
+    """The run on gpfd's pool with the deadline, nothing hung (test_executor_ray and
+    test_executor_mpi4py compare theirs to it too)."""
     run = evolve(tmp, "ref", once=True, arm=False, **COMMON, threads=2, task_timeout=TIMEOUT)
     assert run.config["task_timeout"] == TIMEOUT
     return run_files(run.dir)
+
+
+def resumed_mended(directory: Path) -> dict[str, str]:
+    """The files, read as under TIMEOUT (with_deadline), of the run in `directory` that its hung
+    environment stopped, resumed on gpfd's pool once mended (DIRECTORY-flags/armed removed),
+    with the keywords it was started with (run.json)."""
+    Path(f"{directory}-flags/armed").unlink()
+    started = json.loads((directory / "run.json").read_text())["env"]["kwargs"]
+    run = gpfd.evolve(resume=directory, env=Hangs, env_kwargs=started, threads=2, verbose=False)
+    assert run.finished
+    return with_deadline(run_files(run.dir), TIMEOUT)
+
+
+@pytest.fixture(scope="module")
+def reference(tmp_path_factory) -> dict[str, str]:
+    return reference_files(tmp_path_factory.mktemp("ref"))
 
 
 def test_a_task_hung_once_runs_again_on_a_new_worker_of_gpfds_pool(tmp_path, reference):
@@ -88,6 +113,36 @@ def test_a_task_hung_once_runs_again_on_dask(tmp_path, reference, dask_client):
     assert run_files(run.dir) == reference
 
 
+def test_a_task_hung_on_every_dask_worker_stops_and_resumes(tmp_path, reference):
+    """Dask gives a task up once its workers died running it more than allowed-failures times
+    (1 here, for a short test; the nanny restarts each): gpfd.WorkerError naming the
+    environment, the directory resumable to the same run."""
+    distributed = pytest.importorskip("distributed")
+    import dask
+
+    with dask.config.set({"distributed.scheduler.allowed-failures": 1}):
+        cluster = distributed.LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+        )
+    try:
+        with distributed.Client(cluster) as client, pytest.raises(WorkerError) as caught:
+            evolve(
+                tmp_path,
+                "run",
+                once=False,
+                arm=True,
+                **COMMON,
+                executor=client.get_executor(),
+                task_timeout=3,
+            )
+    finally:
+        cluster.close()
+    text = str(caught.value)
+    assert "a task of python:Hangs" in text and "task_timeout=3 s" in text, text
+    assert "resume= continues" in text, text
+    assert resumed_mended(tmp_path / "run") == reference
+
+
 def test_the_deadline_from_the_config_key_is_the_same(tmp_path, reference):
     common = {**COMMON, "set": {**SMALL, "task_timeout": TIMEOUT}}
     run = evolve(tmp_path, "key", once=True, arm=True, **common, threads=2)
@@ -102,15 +157,7 @@ def test_a_task_hung_on_every_worker_stops_naming_the_step_and_resumes(tmp_path,
     assert f"task_timeout={TIMEOUT} s in python:Hangs: step " in text, text
     assert "of its episode" in text and "the task has lost 3 workers" in text, text
     assert "resume= continues" in text, text
-    (tmp_path / "run-flags/armed").unlink()  # The environment mended: the run resumes.
-    run = gpfd.evolve(
-        resume=tmp_path / "run",
-        env=Hangs,
-        env_kwargs={"directory": str(tmp_path / "run-flags"), "parent": os.getpid(), "once": False},
-        threads=2,
-        verbose=False,
-    )
-    assert run.finished and run_files(run.dir) == reference
+    assert resumed_mended(tmp_path / "run") == reference
 
 
 def test_a_process_pool_breaks_with_a_clear_error(tmp_path):

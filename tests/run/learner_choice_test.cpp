@@ -15,6 +15,7 @@
 #include "gpfd/service/configs.hpp"
 #include "gpfd/service/evolve.hpp"
 #include "gpfd/util/error.hpp"
+#include "slow_trial_runner.hpp"
 
 namespace gpfd::testing {
 namespace {
@@ -413,6 +414,24 @@ TEST(LearnerChoice, TrainsNoLearningBesideAndFitsAnAllowance) {
   EXPECT_FALSE(cut.nothingLearns);
   EXPECT_NE(run::learnerChoiceText(cut).find("NOT chosen"), std::string::npos);
   EXPECT_EQ(nlohmann::json::parse(run::learnerChoiceJson(cut))["cut"], "all");
+}
+
+// The first candidate's whole cost, measured, sizes the others again: where they would pass the
+// allowance that the first training said they fit, the first candidate is kept, said.
+TEST(LearnerChoice, TheFirstCandidatesCostCutsTheOthersThatWouldPassTheAllowance) {
+  const auto config = service::loadConfig(choosingConfig(), {});
+  run::ThreadTrialRunner one(1);
+  const auto whole = run::chooseLearnerSettings(config, one);
+  SlowTrialRunner slow(1);  // The first training fast.
+  // 1.5 s: the first training (milliseconds) predicts far less; the first candidate takes 1 s
+  // more, so the two about 2 s.
+  const auto cut = run::chooseLearnerSettings(config, slow, 1.5, 1);
+  EXPECT_EQ(cut.cut, run::LearnerChoice::Cut::Candidates);
+  ASSERT_EQ(cut.candidates.size(), 1u);
+  EXPECT_EQ(cut.scores[0], whole.scores[0]);  // The first candidate trained whole.
+  EXPECT_GT(cut.predictedSeconds, 1.5);
+  EXPECT_NE(run::learnerChoiceText(cut).find("NOT chosen"), std::string::npos);
+  EXPECT_EQ(nlohmann::json::parse(run::learnerChoiceJson(cut))["cut"], "candidates");
 }
 
 // Where the original variables and no learning score alike with every candidate (a learner of

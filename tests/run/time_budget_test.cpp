@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 
@@ -12,6 +13,7 @@
 #include "gpfd/service/configs.hpp"
 #include "gpfd/service/evolve.hpp"
 #include "gpfd/util/error.hpp"
+#include "slow_trial_runner.hpp"
 
 namespace gpfd::testing {
 namespace {
@@ -155,6 +157,27 @@ TEST(TimeBudget, ABudgetTooShortForTheSmallestRunIsRefused) {
   EXPECT_NE(what.find("is too short here: "), std::string::npos) << what;
   EXPECT_NE(what.find("the smallest run"), std::string::npos) << what;
   EXPECT_NE(what.find("give at least"), std::string::npos) << what;
+}
+
+// A learner choice that took the whole budget (its first training alone) is refused at once,
+// predicted from that training, without timing one more.
+TEST(TimeBudget, AChoiceThatTookTheWholeBudgetIsRefusedWithoutTrainingMore) {
+  service::EvolveRequest request;
+  request.config = "cartpole-quick";
+  request.overrides = {"time_budget=0.5", R"(learner.choose={ rprop = ["small", "large"] })"};
+  request.out = {freshDir("budget-choice-took-all"), false, "--out"};
+  auto runner = std::make_shared<SlowTrialRunner>();
+  request.trialRunner = runner;
+  service::EvolveProgress quiet;
+  const std::atomic<bool> stop{false};
+  try {
+    service::evolve(request, quiet, stop);
+    FAIL() << "a 0.5 s budget was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("is too short here: "), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("give at least"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(runner->calls, 1);  // The choice's first training only.
 }
 
 TEST(TimeBudget, ABudgetTooShortForItsRunsNamesTheWholeBudget) {

@@ -90,6 +90,11 @@ inline constexpr double kFreshShare = 0.65;
 // Wall seconds of one trial training of the original variables (on the run's trial runner, else
 // one thread): what refuseBeforeMeasuring predicts from.
 double timeOneTraining(const ExperimentConfig& config, const DiscoveryOptions& options);
+// Wall seconds of one trial training predicted from `seconds`, those of one training under
+// `budget` (in proportion to the learner's budget parameter, pg's updates; the same where it has
+// none): the learner choice's first training, where it left no time to time one.
+double trialSecondsFrom(const ExperimentConfig& config, double seconds,
+                        LearningTask::Budget budget);
 // InputError at `where`, naming a budget that works (sufficientBudget), where the measurement
 // and `runs` smallest runs, predicted from `oneTraining` (each training at its cost, spread over
 // `workers`), cannot fit the `seconds` left: on a slow task the refusal comes before the

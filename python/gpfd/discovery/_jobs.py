@@ -17,7 +17,12 @@ An executor that loses a task silently when its worker is lost (mpi4py's ``MPIPo
 the task's future never completes) gets its lost tasks sent again: once no result of a round has
 come for ``max(LOST_AFTER, LOST_FACTOR x`` the longest any task of its job took from submission
 to result``)``, each task of the round out that long, on a worker, is sent again (job attached);
-the first result of a task is the one taken, its other copies cancelled or ignored.
+the first result of a task is the one taken, its other copies cancelled or ignored. Such an
+executor cannot replace a worker that a task's ``task_timeout`` ended
+(gpfd.execution._deadline): with a deadline T, every task ends within T + GRACE (or its worker
+does), so a round that has had no result for ``2 x (T + GRACE + LOST_AFTER)`` (from the silence
+that sends lost tasks again, at least) has no worker left that takes its tasks, and stops with
+WorkerError (each ended worker has named its environment's step on its stderr, the job's).
 
 A task's result depends on its job, genomes and seeds only, never on where it ran or how many
 times it was sent: the same seed gives the same run on any executor.
@@ -157,6 +162,7 @@ class Jobs:
                 "use threads=1 to run in this process"
             ) from e
         self._env_key = _digest(self._env_bytes)
+        self.name = name
         self._jobs: dict[str, tuple[str, bytes]] = {}  # config text -> (key, payload)
         self._sent: set[str] = set()  # Keys sent at least once.
         self.payloads_sent = 0  # Tasks sent with their job attached (tests read it).
@@ -191,6 +197,9 @@ class Jobs:
         sent_at: dict[Future, float] = {}
         out: dict[int, list[Future]] = {}  # Task -> its copies out.
         silent = loses_tasks_silently(executor)
+        # With a deadline, a copy out this long has lost its worker (above), on such executors.
+        expiry = _deadline.seconds_of(config_text) if silent else None
+        dead_after = None if expiry is None else expiry + _deadline.GRACE + LOST_AFTER
         # Tasks whose copy could not be sent -> when: sent again at the next result, or after
         # RESEND_PAUSE.
         unsent: dict[int, float] = {}
@@ -217,7 +226,14 @@ class Jobs:
             turn = 0
             while turn < len(work):
                 quiet = self._quiet(key) if silent else None
+                if quiet is None:  # No result yet to measure by: the deadline's, where one is set.
+                    quiet = dead_after
                 timeout = None if quiet is None else max(0.0, last + quiet - time.monotonic())
+                if expiry is not None and dead_after is not None and quiet is not None:
+                    given_up = answered + max(quiet, dead_after) + dead_after
+                    timeout = max(0.0, min(last + quiet, given_up) - time.monotonic())
+                    if time.monotonic() >= given_up:
+                        raise self._no_worker_left(executor, expiry, time.monotonic() - answered)
                 if unsent:
                     due = max(0.0, min(unsent.values()) + RESEND_PAUSE - time.monotonic())
                     timeout = due if timeout is None else min(timeout, due)
@@ -300,6 +316,14 @@ class Jobs:
                 file=sys.stderr,
                 flush=True,
             )
+
+    def _no_worker_left(self, executor: Executor, expiry: float, silence: float) -> WorkerError:
+        return WorkerError(
+            f"no result from {type(executor).__name__} for {silence:.1f} s, while a task of "
+            f"{self.name} ends within task_timeout={expiry:g} s or ends its worker: its workers "
+            "are lost, which it cannot replace (each ended by its task's deadline printed "
+            "where the task was, the environment's step, to its stderr: the job's)"
+        )
 
     def _quiet(self, key: str) -> float | None:
         """How long a round of job `key` may go without a result before its tasks out that long

@@ -150,9 +150,12 @@ class Evaluator:
             return (function(config_text, *args) for args in work)
         executor = self._started()
         assert self._jobs is not None
-        return self._round(self._jobs.map(executor, function, config_text, work, self.workers))
+        results = self._jobs.map(executor, function, config_text, work, self.workers)
+        return self._round(results, _deadline.seconds_of(config_text))
 
-    def _round(self, results: Iterator) -> Iterator:
+    def _round(self, results: Iterator, expiry: float | None) -> Iterator:
+        """`results`, a lost worker's or a broken executor's error a WorkerError saying that
+        resume= continues (`expiry`: the task_timeout, which a Dask error names)."""
         self._busy = True
         try:
             yield from results
@@ -177,6 +180,18 @@ class Evaluator:
                 "client's tasks are cancelled when its scheduler goes away or it closes. The "
                 "work stops; a discovery's directory keeps its last complete generation, which "
                 "resume= continues (with a working executor)."
+            ) from e
+        except Exception as e:
+            if type(e).__name__ != "KilledWorker":  # Dask's: a task whose workers all died.
+                raise
+            ended = ""
+            if expiry is not None:
+                ended = f", each ended by task_timeout={expiry:g} s if it ran past it (its stderr "
+                ended += "names the environment's step)"
+            raise WorkerError(
+                f"Dask gave up a task of {self.name}: its workers died running it{ended} ({e}). "
+                "The work stops; a discovery's directory keeps its last complete generation, "
+                "which resume= continues."
             ) from e
         self._busy = False
 

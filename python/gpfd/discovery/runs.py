@@ -471,11 +471,13 @@ def evolve(
         ends, and the task runs again as a lost worker's: gpfd's pool (``threads``) starts a new
         worker and runs it again, up to 3 workers, then stops the run with gpfd.WorkerError naming
         the environment and the step (the directory keeps its last complete generation, which
-        ``resume=`` continues); Dask and Ray run it again on a fresh worker; mpi4py's pool sends
-        it again to another rank (it cannot replace the rank); a ``ProcessPoolExecutor`` or loky
-        breaks as a whole (WorkerError). Refused (InputError) for gpfd's own environments and with
-        one thread and no executor: nothing could end this process' own hung step. A task is
-        retried with the same seeds, so a retried task gives the same result.
+        ``resume=`` continues); Dask and Ray run it again on a fresh worker (their last try
+        failed: gpfd.WorkerError, as the pool's); mpi4py's pool sends it again to another rank
+        (it cannot replace the rank; with none left, gpfd.WorkerError); a
+        ``ProcessPoolExecutor`` or loky breaks as a whole (WorkerError). Refused (InputError)
+        for gpfd's own environments and with one thread and no executor: nothing could end
+        this process' own hung step. A task is retried with the same seeds, so a retried task
+        gives the same result.
     callback: called after each generation (once its checkpoint is written) with its statistics
         (generation, best, mean, median, mean_size, mean_features, evaluations, cache_hits,
         seconds, best_features, and generations: the run's, as a time budget's deadline refits

@@ -1,0 +1,30 @@
+// A trial runner for the tests of a time budget's timing.
+#pragma once
+
+#include <chrono>
+#include <functional>
+#include <thread>
+#include <vector>
+
+#include "gpfd/run/trial_runner.hpp"
+
+namespace gpfd::testing {
+
+// Trains on one thread; each call after the first `fast` takes a second more. Counts its calls.
+class SlowTrialRunner final : public run::TrialRunner {
+ public:
+  explicit SlowTrialRunner(int fast = 0) : fast_(fast) {}
+  std::vector<std::vector<rl::LearningCurve>> run(
+      const run::LearningTask& task, const run::TrialBatch& batch,
+      const std::function<void(std::size_t)>& done) override {
+    if (calls++ >= fast_) std::this_thread::sleep_for(std::chrono::seconds(1));
+    return threads_.run(task, batch, done);
+  }
+  int calls = 0;
+
+ private:
+  int fast_;
+  run::ThreadTrialRunner threads_{1};
+};
+
+}  // namespace gpfd::testing
