@@ -17,6 +17,7 @@ using gpfd::Rng;
 using namespace gpfd::env;
 
 void stepOnRandomActions(benchmark::State& state, Environment& env);
+void stepLanes(benchmark::State& state, BatchEnvironment& batch);
 
 // Steps an environment on pre-drawn random actions, resetting at the end of an episode.
 void stepEnvironment(benchmark::State& state, const std::string& name, const Params& params) {
@@ -135,16 +136,20 @@ void stepBatch(benchmark::State& state, const std::string& name, const Params& p
     state.SkipWithError("instruction set not available");
     return;
   }
-  const auto batch = makeBatchEnvironment(name, params, isa);
+  stepLanes(state, *makeBatchEnvironment(name, params, isa));
+}
+
+// Steps `batch`'s state.range(0) lanes as stepBatch describes.
+void stepLanes(benchmark::State& state, BatchEnvironment& batch) {
   const auto lanes = static_cast<std::size_t>(state.range(0));
-  const std::size_t dim = batch->stateDim(), components = batch->actionComponents();
+  const std::size_t dim = batch.stateDim(), components = batch.actionComponents();
   std::vector<double> states(dim * lanes), rewards(lanes);
   std::vector<std::int32_t> elapsed(lanes);
   std::vector<std::uint8_t> terminated(lanes), truncated(lanes);
   Rng rng(1);
   // 64 pre-drawn action batches, used in turn.
   std::vector<double> actions(64 * components * lanes);
-  const ActionSpace space = batch->scalar().actionSpace();
+  const ActionSpace space = batch.scalar().actionSpace();
   for (std::size_t i = 0; i < actions.size(); ++i) {
     const std::size_t c = (i / lanes) % components;
     actions[i] = space.continuous() ? rng.uniform(space.low[c], space.high[c])
@@ -152,13 +157,13 @@ void stepBatch(benchmark::State& state, const std::string& name, const Params& p
   }
   BatchBuffers io{lanes,          lanes,          states.data(),     nullptr,
                   elapsed.data(), rewards.data(), terminated.data(), truncated.data()};
-  for (std::size_t l = 0; l < lanes; ++l) batch->reset(rng, io, l);
+  for (std::size_t l = 0; l < lanes; ++l) batch.reset(rng, io, l);
   std::size_t t = 0;
   for (auto _ : state) {
     io.action = actions.data() + (t++ & 63) * components * lanes;
-    batch->step(io);
+    batch.step(io);
     for (std::size_t l = 0; l < lanes; ++l) {
-      if (terminated[l] || truncated[l]) batch->reset(rng, io, l);
+      if (terminated[l] || truncated[l]) batch.reset(rng, io, l);
     }
     benchmark::DoNotOptimize(states.data());
   }
@@ -171,6 +176,11 @@ void BM_BatchSwimmer3(benchmark::State& s) { stepBatch(s, "swimmer", {{"segments
 void BM_BatchSwimmer5(benchmark::State& s) { stepBatch(s, "swimmer", {{"segments", "5"}}); }
 // The twins of Gymnasium's classic control (env/gymnasium_twin.hpp), one instance.
 void BM_Twin(benchmark::State& s, const char* id) { stepEnvironment(s, id, {}); }
+// Their lanes as the lockstep player steps them (makeLaneByLaneBatch: GymnasiumTwin::makeLanes);
+// ns per lane-step. Argument: lanes.
+void BM_TwinLanes(benchmark::State& s, const char* id) {
+  stepLanes(s, *makeLaneByLaneBatch(*Registry::global().make(id, {}), BatchIsa::Scalar));
+}
 
 void batchArgs(benchmark::internal::Benchmark* b) {
   for (const int lanes : {1, 4, 10, 64}) b->Args({lanes, 0})->Args({lanes, 1})->Args({lanes, 2});
@@ -192,6 +202,11 @@ BENCHMARK_CAPTURE(BM_Twin, Acrobot, "Acrobot-v1");
 BENCHMARK_CAPTURE(BM_Twin, Pendulum, "Pendulum-v1");
 BENCHMARK_CAPTURE(BM_Twin, MountainCar, "MountainCar-v0");
 BENCHMARK_CAPTURE(BM_Twin, MountainCarContinuous, "MountainCarContinuous-v0");
+BENCHMARK_CAPTURE(BM_TwinLanes, CartPole, "CartPole-v1")->Arg(20);
+BENCHMARK_CAPTURE(BM_TwinLanes, Acrobot, "Acrobot-v1")->Arg(20);
+BENCHMARK_CAPTURE(BM_TwinLanes, Pendulum, "Pendulum-v1")->Arg(20);
+BENCHMARK_CAPTURE(BM_TwinLanes, MountainCar, "MountainCar-v0")->Arg(20);
+BENCHMARK_CAPTURE(BM_TwinLanes, MountainCarContinuous, "MountainCarContinuous-v0")->Arg(20);
 BENCHMARK(BM_BatchCartPole)->Apply(batchArgs);
 BENCHMARK(BM_BatchAcrobot)->Apply(batchArgs);
 BENCHMARK(BM_BatchSwimmer3)->Apply(batchArgs);

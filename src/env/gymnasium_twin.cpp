@@ -42,23 +42,7 @@ void GymnasiumTwin::resetWithoutSeed() {
 }
 
 StepResult GymnasiumTwin::stepAs(std::span<const double> action, ActionKind kind) {
-  StepResult result;
-  if (!continuous_) continuous_ = actionSpace().continuous();  // Once: the space allocates.
-  if (kind == ActionKind::Float32 && *continuous_) {
-    // Elements of a float32 array: what gpfd.user_env's adapter gives Gymnasium's environment.
-    std::array<double, 4> rounded{};
-    checkActionSize(action, std::min(action.size(), rounded.size()));
-    for (std::size_t i = 0; i < action.size(); ++i) rounded[i] = numpy_scalar::toFloat32(action[i]);
-    result = advance(std::span<const double>(rounded.data(), action.size()), kind);
-  } else {
-    result = advance(action, kind);
-  }
-  roundObservation();
-  ++elapsed_;  // TimeLimit: truncated once the episode has run its steps.
-  if (settings_.maxEpisodeSteps > 0 && elapsed_ >= settings_.maxEpisodeSteps) {
-    result.truncated = true;
-  }
-  return result;
+  return stepWith(*this, action, kind);
 }
 
 void GymnasiumTwin::roundObservation() {

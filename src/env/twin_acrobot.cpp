@@ -10,6 +10,7 @@
 #include <cstdint>
 
 #include "gpfd/util/error.hpp"
+#include "lane_copies.hpp"
 #include "numpy_trig_f32.hpp"
 #include "twin_params.hpp"
 #include "twins.hpp"
@@ -113,6 +114,9 @@ class AcrobotTwin final : public GymnasiumTwin {
   }
   Params params() const override { return AcrobotConfig::table().write(config_); }
   ActionSpace actionSpace() const override { return discreteActions(3); }
+  std::unique_ptr<BatchEnvironment> makeLanes(BatchIsa isa) const override {
+    return makeLaneCopies(*this, isa);
+  }
   void setState(std::span<const double> state) override {
     if (state.size() != 4) {
       throw InputError("Acrobot-v1 is set by its 4 angles and velocities", "state");
@@ -123,6 +127,7 @@ class AcrobotTwin final : public GymnasiumTwin {
   }
 
  private:
+  friend class GymnasiumTwin;  // stepFinal calls advance.
   void start(numpy::Pcg64& random) override {
     for (double& v : dynamics_) v = static_cast<float>(random.uniform(-0.1, 0.1));
     observe(true);

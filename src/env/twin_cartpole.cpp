@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "gpfd/util/error.hpp"
+#include "lane_copies.hpp"
 #include "twin_params.hpp"
 #include "twins.hpp"
 
@@ -42,6 +43,9 @@ class CartPoleTwin final : public GymnasiumTwin {
   }
   Params params() const override { return CartPoleConfig::table().write(config_); }
   ActionSpace actionSpace() const override { return discreteActions(2); }
+  std::unique_ptr<BatchEnvironment> makeLanes(BatchIsa isa) const override {
+    return makeLaneCopies(*this, isa);
+  }
   void setState(std::span<const double> state) override {
     if (state.size() != 4) throw InputError("CartPole-v1 takes 4 state variables", "state");
     dynamics_.assign(state.begin(), state.end());
@@ -51,6 +55,7 @@ class CartPoleTwin final : public GymnasiumTwin {
   }
 
  private:
+  friend class GymnasiumTwin;  // stepFinal calls advance.
   void start(numpy::Pcg64& random) override {
     for (double& v : dynamics_) v = random.uniform(-0.05, 0.05);  // uniform(size=(4,))
     extra_ = 0;  // steps_beyond_terminated = None (else extra_ - 1).
@@ -76,7 +81,10 @@ class CartPoleTwin final : public GymnasiumTwin {
     xDot = xDot + kTau * xAcc;
     theta = theta + kTau * thetaDot;
     thetaDot = thetaDot + kTau * thetaAcc;
-    dynamics_ = {x, xDot, theta, thetaDot};
+    dynamics_[0] = x;
+    dynamics_[1] = xDot;
+    dynamics_[2] = theta;
+    dynamics_[3] = thetaDot;
     observe();
 
     StepResult result;

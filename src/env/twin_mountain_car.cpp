@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "gpfd/util/error.hpp"
+#include "lane_copies.hpp"
 #include "twin_params.hpp"
 #include "twins.hpp"
 
@@ -68,8 +69,12 @@ class MountainCarTwin final : public MountainCarBase {
   }
   Params params() const override { return DiscreteConfig::table().write(config_); }
   ActionSpace actionSpace() const override { return discreteActions(3); }
+  std::unique_ptr<BatchEnvironment> makeLanes(BatchIsa isa) const override {
+    return makeLaneCopies(*this, isa);
+  }
 
  private:
+  friend class GymnasiumTwin;  // stepFinal calls advance.
   StepResult advance(std::span<const double> action, ActionKind) override {
     checkActionSize(action, 1);
     const double a = action[0];
@@ -103,11 +108,24 @@ class MountainCarContinuousTwin final : public MountainCarBase {
   }
   Params params() const override { return ContinuousConfig::table().write(config_); }
   ActionSpace actionSpace() const override { return boxAction(-1.0, 1.0, "force"); }
+  std::unique_ptr<BatchEnvironment> makeLanes(BatchIsa isa) const override {
+    return makeLaneCopies(*this, isa);
+  }
 
  private:
-  StepResult advance(std::span<const double> action, ActionKind kind) override {
+  friend class GymnasiumTwin;  // stepFinal calls advance.
+  // As Pendulum-v1's: every call inlined, gpfd's case (float32 actions, NumPy 2) with its types
+  // known where it is compiled (the same operations, without a test of the types per operation).
+  [[gnu::flatten]] StepResult advance(std::span<const double> action, ActionKind kind) override {
     checkActionSize(action, 1);
-    const Promotion p = promotion();
+    if (kind == Kind::Float32 && promotion() == Promotion::Nep50) {
+      return advanceAs(action, Kind::Float32, Promotion::Nep50);
+    }
+    return advanceAs(action, kind, promotion());
+  }
+
+  [[gnu::always_inline]] StepResult advanceAs(std::span<const double> action, ActionKind kind,
+                                              Promotion p) {
     // self.state[0] and [1]: float64 after the reset, float32 after a step.
     const Kind stateKind = extra_ != 0 ? Kind::Float64 : Kind::Float32;
     Num position{dynamics_[0], stateKind, p}, velocity{dynamics_[1], stateKind, p};

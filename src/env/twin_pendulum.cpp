@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "gpfd/util/error.hpp"
+#include "lane_copies.hpp"
 #include "twin_params.hpp"
 #include "twins.hpp"
 
@@ -64,6 +65,9 @@ class PendulumTwin final : public GymnasiumTwin {
   }
   Params params() const override { return PendulumConfig::table().write(config_); }
   ActionSpace actionSpace() const override { return boxAction(-kMaxTorque, kMaxTorque, "torque"); }
+  std::unique_ptr<BatchEnvironment> makeLanes(BatchIsa isa) const override {
+    return makeLaneCopies(*this, isa);
+  }
   // (cos th, sin th, dth), th from the first two by atan2.
   void setState(std::span<const double> state) override {
     if (state.size() != 3) throw InputError("Pendulum-v1 takes 3 state variables", "state");
@@ -73,17 +77,27 @@ class PendulumTwin final : public GymnasiumTwin {
   }
 
  private:
+  friend class GymnasiumTwin;  // stepFinal calls advance.
   void start(numpy::Pcg64& random) override {
     // uniform(low=-high, high=high) over high = [x_init, y_init], element by element.
     dynamics_ = {random.uniform(-kDefaultX, kDefaultX), random.uniform(-kDefaultY, kDefaultY)};
     observe();
   }
 
-  StepResult advance(std::span<const double> action, ActionKind kind) override {
+  // Every call inlined (flatten), and gpfd's case (float32 actions under NumPy 2's rules) with
+  // its types known where it is compiled, so that NumPy's promotion folds away: the same
+  // operations on the same values, without a test of the types per operation.
+  [[gnu::flatten]] StepResult advance(std::span<const double> action, ActionKind kind) override {
     checkActionSize(action, 1);
-    const Promotion p = promotion();
+    if (kind == Kind::Float32 && promotion() == Promotion::Nep50) {
+      return advanceAs(action[0], Kind::Float32, Promotion::Nep50);
+    }
+    return advanceAs(action[0], kind, promotion());
+  }
+
+  [[gnu::always_inline]] StepResult advanceAs(double action, ActionKind kind, Promotion p) {
     const Num th = f64(dynamics_[0], p), thdot = f64(dynamics_[1], p);
-    const Num u = numpy_scalar::npClip({action[0], kind, p}, py(-kMaxTorque, p), py(kMaxTorque, p));
+    const Num u = numpy_scalar::npClip({action, kind, p}, py(-kMaxTorque, p), py(kMaxTorque, p));
     const Num two = {2, Kind::PyInt, p};
     // angle_normalize(th) = ((th + pi) % (2 pi)) - pi
     const Num normalised = f64(floorMod((th + py(kPi, p)).value, 2 * kPi), p) - py(kPi, p);
@@ -97,7 +111,8 @@ class PendulumTwin final : public GymnasiumTwin {
     newThdot =
         numpy_scalar::npClip(newThdot, {-kMaxSpeed, Kind::PyInt, p}, {kMaxSpeed, Kind::PyInt, p});
     const Num newTh = th + newThdot * py(kDt, p);
-    dynamics_ = {newTh.value, newThdot.value};
+    dynamics_[0] = newTh.value;
+    dynamics_[1] = newThdot.value;
     observe();
     StepResult result;
     result.reward = -costs.value;

@@ -74,8 +74,11 @@ std::size_t LinearPolicy::drawChoice(double* z, Rng& rng, double* coefficient) c
   // Softmax, shifted by the largest logit: p_k = exp(z_k - max) / sum.
   const double top = *std::max_element(z, z + outputs_);
   double total = 0.0;
+  const bool finiteTop = std::isfinite(top);
   for (std::size_t k = 0; k < outputs_; ++k) {
-    z[k] = std::exp(z[k] - top);
+    // exp(+0) is exactly 1 (C's Annex F): where z_k = top (finite), z_k - top is +0, and the
+    // largest logits skip libm's call.
+    z[k] = finiteTop && z[k] == top ? 1.0 : std::exp(z[k] - top);
     total += z[k];
   }
   const double draw = rng.uniform() * total;

@@ -44,6 +44,7 @@ class LockstepPlayer final : public Player {
         choiceCoefficient_(outputs_, 0.0),
         logits_(outputs_, 0.0),
         eligibility_(parameters_ * stride_, 0.0),
+        choiceRows_(outputs_ * stride_, 0.0),
         weights_(outputs_ * dim_ * stride_, 0.0),
         sd_(outputs_ * stride_, 1.0),
         shift_(normalise_ ? rawDim_ * stride_ : 0, 0.0),
@@ -132,9 +133,13 @@ class LockstepPlayer final : public Player {
       }
       return;
     }
+    // Each lane's choice and coefficients; then the gradients of all lanes, row by row (each
+    // element gets the one product it gets lane by lane; a failed lane's episode ends here, its
+    // eligibility unused, as on the continuous path).
     for (std::size_t l = 0; l < active; ++l) {
       if (failed_[l]) {
         store_.action[l] = 0.0;
+        for (std::size_t k = 0; k < outputs_; ++k) choiceRows_[k * stride_ + l] = 0.0;
         continue;
       }
       for (std::size_t k = 0; k < outputs_; ++k) logits_[k] = mu_[k * stride_ + l];
@@ -144,11 +149,12 @@ class LockstepPlayer final : public Player {
       rngs_.set(l, rng);
       store_.action[l] = static_cast<double>(choice);
       for (std::size_t k = 0; k < outputs_; ++k) {
-        double* g = eligibility_.data() + k * dim_ * stride_ + l;
-        for (std::size_t j = 0; j < dim_; ++j) {
-          g[j * stride_] += choiceCoefficient_[k] * phi_[j * stride_ + l];
-        }
+        choiceRows_[k * stride_ + l] = choiceCoefficient_[k];
       }
+    }
+    for (std::size_t k = 0; k < outputs_; ++k) {
+      lockstep::addGradient(lanes_, eligibility_.data(), k * dim_, choiceRows_.data() + k * stride_,
+                            phi_.data(), dim_);
     }
   }
 
@@ -266,6 +272,7 @@ class LockstepPlayer final : public Player {
   env::BatchBuffers& io_;
   std::vector<double> blocks_, raw_;  // States and raw features in lane blocks (the map's layout).
   std::vector<double> phi_, mu_, eps_, coefficient_, choiceCoefficient_, logits_, eligibility_;
+  std::vector<double> choiceRows_;  // Each lane's softmax coefficients, one row per choice.
   std::vector<double> weights_, sd_, shift_, scale_;  // Each lane's run's parameters.
   std::vector<double> weight_;                        // Discount weight of the next reward.
   std::vector<std::uint8_t> failed_;

@@ -140,7 +140,14 @@ std::vector<Case> laneCases() {
   return {{"swimmer", {{"segments", "9"}, {"horizon", "7"}}},  // No batched form.
           {"cartpole", {{"actions", "discrete"}, {"max_steps", "9"}}},
           {"acrobot", {{"max_steps", "11"}}},
-          {"tetris", {{"cols", "6"}, {"rows", "8"}}}};  // Two-component, state-bound actions.
+          {"tetris", {{"cols", "6"}, {"rows", "8"}}},  // Two-component, state-bound actions.
+          // The twins of Gymnasium's tasks: their own lanes (GymnasiumTwin::makeLanes).
+          {"CartPole-v1", {{"max_episode_steps", "9"}}},
+          {"Acrobot-v1", {{"max_episode_steps", "11"}}},
+          {"Pendulum-v1", {{"max_episode_steps", "12"}}},
+          {"Pendulum-v1", {{"max_episode_steps", "12"}, {"numpy", "1"}}},
+          {"MountainCar-v0", {{"max_episode_steps", "10"}}},
+          {"MountainCarContinuous-v0", {{"max_episode_steps", "10"}}}};
 }
 
 // Lanes of a lane-by-lane batch and, beside them, scalar environments (one per lane, made by the

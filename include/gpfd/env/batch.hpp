@@ -125,11 +125,12 @@ std::unique_ptr<BatchEnvironment> makeBatchEnvironment(const std::string& name,
 
 // Any environment as a batch, lane by lane: lane l steps its own fresh copy of `env`
 // (Environment::freshCopy) through step(), one lane after another; nullptr when `env` cannot be
-// copied. Each lane's copy keeps its state: the `state` rows are written (after reset and step)
-// but not read, so lanes move only through moveLane. A discrete action that is not one of the
-// choices throws InputError before any lane moves for a one-component action; otherwise the
-// copy's step() throws, the lanes before it having moved. `isa` tells the caller's lane kernels
-// what they may use (usesAvx2); the copies step one at a time whatever it is.
+// copied (a twin of a Gymnasium task: its makeLanes, the same contract). Each lane's copy keeps its
+// state: the `state` rows are written (after reset and step) but not read, so lanes move only
+// through moveLane. A discrete action that is not one of the choices throws InputError before any
+// lane moves for a one-component action; otherwise the copy's step() throws, the lanes before it
+// having moved. `isa` tells the caller's lane kernels what they may use (usesAvx2); the copies step
+// one at a time whatever it is.
 std::unique_ptr<BatchEnvironment> makeLaneByLaneBatch(const Environment& env,
                                                       BatchIsa isa = BatchIsa::Auto);
 

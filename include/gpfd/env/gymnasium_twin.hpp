@@ -6,13 +6,17 @@
 // state variables are the observation's, x0, x1, ... as gpfd names a Gymnasium observation.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "gpfd/env/batch.hpp"
 #include "gpfd/env/environment.hpp"
 #include "gpfd/env/numpy_scalar.hpp"
 #include "gpfd/util/numpy_random.hpp"
@@ -50,6 +54,14 @@ class GymnasiumTwin : public Environment {
   // do in Gymnasium.
   StepResult step(std::span<const double> action) override { return stepAs(action, actionKind_); }
   StepResult stepAs(std::span<const double> action, ActionKind kind);
+  // step() of a twin of final type Twin (this one), whose advance is called without a virtual call
+  // so that it can inline into the caller's loop (lane_copies.hpp).
+  template <class Twin>
+  StepResult stepFinal(std::span<const double> action);
+
+  // Lanes of copies of this twin stepped in one loop without a virtual call per lane
+  // (lane_copies.hpp): env::makeLaneByLaneBatch's form for a twin; nullptr where a twin has none.
+  virtual std::unique_ptr<BatchEnvironment> makeLanes(BatchIsa /*isa*/) const { return nullptr; }
   std::vector<std::uint64_t> snapshot() const override;
   void restore(std::span<const std::uint64_t> words) override;
 
@@ -78,6 +90,10 @@ class GymnasiumTwin : public Environment {
   std::uint64_t extra_ = 0;
 
  private:
+  // stepAs's body; Twin is GymnasiumTwin (a virtual advance) or a final twin.
+  template <class Twin>
+  StepResult stepWith(Twin& twin, std::span<const double> action, ActionKind kind);
+
   std::string id_;
   std::vector<std::string> names_;
   TwinSettings settings_;
@@ -86,5 +102,31 @@ class GymnasiumTwin : public Environment {
   int elapsed_ = 0;                 // Steps since the reset (TimeLimit's count).
   std::optional<bool> continuous_;  // Whether the action space is continuous, once asked.
 };
+
+template <class Twin>
+StepResult GymnasiumTwin::stepWith(Twin& twin, std::span<const double> action, ActionKind kind) {
+  StepResult result;
+  if (!continuous_) continuous_ = actionSpace().continuous();  // Once: the space allocates.
+  if (kind == ActionKind::Float32 && *continuous_) {
+    // Elements of a float32 array: what gpfd.user_env's adapter gives Gymnasium's environment.
+    std::array<double, 4> rounded{};
+    checkActionSize(action, std::min(action.size(), rounded.size()));
+    for (std::size_t i = 0; i < action.size(); ++i) rounded[i] = numpy_scalar::toFloat32(action[i]);
+    result = twin.advance(std::span<const double>(rounded.data(), action.size()), kind);
+  } else {
+    result = twin.advance(action, kind);
+  }
+  roundObservation();
+  ++elapsed_;  // TimeLimit: truncated once the episode has run its steps.
+  if (settings_.maxEpisodeSteps > 0 && elapsed_ >= settings_.maxEpisodeSteps) {
+    result.truncated = true;
+  }
+  return result;
+}
+
+template <class Twin>
+StepResult GymnasiumTwin::stepFinal(std::span<const double> action) {
+  return stepWith(static_cast<Twin&>(*this), action, actionKind_);
+}
 
 }  // namespace gpfd::env

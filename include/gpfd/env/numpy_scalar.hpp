@@ -11,18 +11,27 @@
 #include <cmath>
 #include <cstdint>
 
+#define GPFD_NUMPY_INLINE [[gnu::always_inline]] inline
+
 namespace gpfd::env::numpy_scalar {
 
 enum class Promotion : std::uint8_t { Nep50, Legacy };
 
-// x rounded to float32 (NumPy's astype(np.float32)), through a volatile: GCC 12.2's SLP
+// x rounded to float32 (NumPy's astype(np.float32)), the float held where the compiler cannot
+// see through it (an empty asm on an SSE register on x86-64, a volatile elsewhere): GCC 12.2's SLP
 // vectoriser (-O2 and -O3) drops a pair of static_cast<float> results stored side by side into
 // doubles, storing them unrounded (seen in MountainCarContinuous-v0's state and Acrobot-v1's and
 // Pendulum-v1's observations; two adjacent `out[i] = static_cast<float>(x)` stores reproduce it,
 // and -fno-tree-slp-vectorize makes it go). Where a float32 rounding matters, use this.
 inline double toFloat32(double x) {
+#if defined(__GNUC__) && defined(__x86_64__)
+  float rounded = static_cast<float>(x);
+  asm("" : "+x"(rounded));  // The register holds the float: the rounding stays.
+  return rounded;
+#else
   volatile float rounded = static_cast<float>(x);
   return rounded;
+#endif
 }
 enum class Kind : std::uint8_t { PyInt, PyFloat, Float32, Float64 };
 
@@ -31,11 +40,11 @@ struct Num {
   Kind kind = Kind::PyFloat;
   Promotion promotion = Promotion::Nep50;
 
-  bool isPython() const { return kind == Kind::PyInt || kind == Kind::PyFloat; }
+  GPFD_NUMPY_INLINE bool isPython() const { return kind == Kind::PyInt || kind == Kind::PyFloat; }
 };
 
 // The type of `a op b` (op arithmetic or a comparison).
-inline Kind resultKind(const Num& a, const Num& b) {
+GPFD_NUMPY_INLINE Kind resultKind(const Num& a, const Num& b) {
   if (a.isPython() && b.isPython()) {
     return a.kind == Kind::PyFloat || b.kind == Kind::PyFloat ? Kind::PyFloat : Kind::PyInt;
   }
@@ -50,7 +59,7 @@ inline Kind resultKind(const Num& a, const Num& b) {
 }
 
 template <class Op>
-Num apply(const Num& a, const Num& b, Op op) {
+GPFD_NUMPY_INLINE Num apply(const Num& a, const Num& b, Op op) {
   const Kind kind = resultKind(a, b);
   const double value =
       kind == Kind::Float32
@@ -60,45 +69,45 @@ Num apply(const Num& a, const Num& b, Op op) {
 }
 
 template <class Op>
-bool compare(const Num& a, const Num& b, Op op) {
+GPFD_NUMPY_INLINE bool compare(const Num& a, const Num& b, Op op) {
   if (resultKind(a, b) == Kind::Float32) {
     return op(static_cast<float>(a.value), static_cast<float>(b.value));
   }
   return op(a.value, b.value);
 }
 
-inline Num operator+(const Num& a, const Num& b) {
+GPFD_NUMPY_INLINE Num operator+(const Num& a, const Num& b) {
   return apply(a, b, [](auto x, auto y) { return x + y; });
 }
-inline Num operator-(const Num& a, const Num& b) {
+GPFD_NUMPY_INLINE Num operator-(const Num& a, const Num& b) {
   return apply(a, b, [](auto x, auto y) { return x - y; });
 }
-inline Num operator*(const Num& a, const Num& b) {
+GPFD_NUMPY_INLINE Num operator*(const Num& a, const Num& b) {
   return apply(a, b, [](auto x, auto y) { return x * y; });
 }
-inline Num operator/(const Num& a, const Num& b) {
+GPFD_NUMPY_INLINE Num operator/(const Num& a, const Num& b) {
   return apply(a, b, [](auto x, auto y) { return x / y; });
 }
-inline Num operator-(const Num& a) { return {-a.value, a.kind, a.promotion}; }
-inline bool operator<(const Num& a, const Num& b) {
+GPFD_NUMPY_INLINE Num operator-(const Num& a) { return {-a.value, a.kind, a.promotion}; }
+GPFD_NUMPY_INLINE bool operator<(const Num& a, const Num& b) {
   return compare(a, b, [](auto x, auto y) { return x < y; });
 }
-inline bool operator>(const Num& a, const Num& b) { return b < a; }
-inline bool operator<=(const Num& a, const Num& b) {
+GPFD_NUMPY_INLINE bool operator>(const Num& a, const Num& b) { return b < a; }
+GPFD_NUMPY_INLINE bool operator<=(const Num& a, const Num& b) {
   return compare(a, b, [](auto x, auto y) { return x <= y; });
 }
-inline bool operator>=(const Num& a, const Num& b) { return b <= a; }
-inline bool operator==(const Num& a, const Num& b) {
+GPFD_NUMPY_INLINE bool operator>=(const Num& a, const Num& b) { return b <= a; }
+GPFD_NUMPY_INLINE bool operator==(const Num& a, const Num& b) {
   return compare(a, b, [](auto x, auto y) { return x == y; });
 }
 
 // Python's max(a, b) and min(a, b): the first unless the second is strictly greater (smaller).
-inline Num pyMax(const Num& a, const Num& b) { return b > a ? b : a; }
-inline Num pyMin(const Num& a, const Num& b) { return b < a ? b : a; }
+GPFD_NUMPY_INLINE Num pyMax(const Num& a, const Num& b) { return b > a ? b : a; }
+GPFD_NUMPY_INLINE Num pyMin(const Num& a, const Num& b) { return b < a ? b : a; }
 
 // np.clip(x, low, high) with Python bounds, of a float64 scalar or of an element of an array
 // (whose type it keeps under both rules): NaN stays NaN (NumPy's maximum and minimum).
-inline Num npClip(const Num& x, const Num& low, const Num& high) {
+GPFD_NUMPY_INLINE Num npClip(const Num& x, const Num& low, const Num& high) {
   Num out = x;
   out.kind = x.isPython() ? Kind::Float64 : x.kind;
   if (std::isnan(x.value)) return out;
