@@ -227,7 +227,7 @@ double trialSecondsFrom(const ExperimentConfig& config, double seconds,
 
 void refuseBeforeMeasuring(const ExperimentConfig& config, double oneTraining, int workers,
                            double seconds, const BudgetSpent& spent, const std::string& where,
-                           int runs) {
+                           int runs, bool predictedTraining) {
   const double each = oneTraining / std::max(1, workers);
   // The measurement's first round (four random genomes and two of the original variables per
   // worker, fitness.trials trainings each) and its trial trainings, all at the original
@@ -255,12 +255,13 @@ void refuseBeforeMeasuring(const ExperimentConfig& config, double oneTraining, i
   CostMeasure predicted;
   predicted.seconds = oneTraining + measuring;
   throw InputError(
-      fmt::format("{:.0f} s{} is too short here: one training of the original variables took "
+      fmt::format("{:.0f} s{} is too short here: one training of the original variables {} "
                   "{:.1f} s, so measuring what an evaluation costs would take about {:.0f} s and "
                   "the smallest run (population {}, 2 generations, the smallest validation) about "
                   "{:.0f} s{}; give at least {:.0f} s{}, or the sizes",
-                  spent.budget, runs > 1 ? fmt::format(" for {} runs", runs) : "", oneTraining,
-                  measuring, kMinPopulation, least,
+                  spent.budget, runs > 1 ? fmt::format(" for {} runs", runs) : "",
+                  predictedTraining ? "would take about" : "took", oneTraining, measuring,
+                  kMinPopulation, least,
                   runs > 1 ? fmt::format(", {} runs about {:.0f} s", runs, least * runs) : "",
                   sufficientBudget(predicted, least * runs, spent), runs > 1 ? ", fewer runs" : ""),
       where);

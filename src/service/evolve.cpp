@@ -154,6 +154,7 @@ run::ExperimentConfig chooseLearner(const run::ExperimentConfig& config,
   options.learnerChoiceJson = run::learnerChoiceJson(choice);
   spent.choice = choice.seconds;
   spent.choiceFirst = choice.firstSeconds;
+  spent.choiceFirstPredicted = choice.firstPredicted;
   return run::withLearnerChoice(config, choice);
 }
 
@@ -167,13 +168,15 @@ run::ExperimentConfig sizeToBudget(const run::ExperimentConfig& config, int runs
     throw InputError("a time budget is not measured under MPI: give the sizes instead", where);
   }
   double left = config.timeBudget - spent.choice;
-  if (spent.choice > 0.0 && left <= 0.0) {
-    // The choice took the whole budget: refused now, predicted from its first training, not
-    // after one training more (Swimmer-v5 on a loaded machine: 189 s, then 171 s more, of 180).
+  if (spent.choice > 0.0 && (left <= 0.0 || spent.choiceFirstPredicted)) {
+    // The choice took the whole budget, or found one training longer than its share: refused
+    // now where the measurement and the smallest run do not fit, predicted from its first
+    // training, not after one training more (Swimmer-v5 on a loaded machine: 189 s, then 171 s
+    // more, of 180).
     const auto budget = config.validation.confirms() ? run::LearningTask::Budget::Confirmation
                                                      : run::LearningTask::Budget::Validation;
     const double one = run::trialSecondsFrom(config, spent.choiceFirst, budget);
-    run::refuseBeforeMeasuring(config, one, options.threads, left, spent, where, runs);
+    run::refuseBeforeMeasuring(config, one, options.threads, left, spent, where, runs, true);
   }
   progress.preparing(
       fmt::format("measuring what an evaluation and a training cost here (at least {:.0f} s)",

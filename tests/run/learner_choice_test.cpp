@@ -415,10 +415,14 @@ TEST(LearnerChoice, TrainsNoLearningBesideAndFitsAnAllowance) {
   const auto json = nlohmann::json::parse(run::learnerChoiceJson(whole));
   EXPECT_FALSE(json.contains("cut"));
   EXPECT_EQ(json["tried"][0]["no_learning"].get<double>(), whole.noLearningMeans[0]);
-  // No time at all: the first training only, the first candidate kept; its score is that
-  // training's in the whole choice (the batches split, the curves the same).
-  const auto cut = run::chooseLearnerSettings(config, threads, 0.0, 2);
+  // Half a second, the first training slowed past it (its one-update timing fast): the first
+  // training only, the first candidate kept; its score is that training's in the whole choice
+  // (the batches split, the curves the same).
+  SlowTrialRunner slowAfterTheUnit(1);
+  const auto cut = run::chooseLearnerSettings(config, slowAfterTheUnit, 0.5, 2);
+  EXPECT_EQ(slowAfterTheUnit.calls, 2);  // The one-update training and the first.
   EXPECT_EQ(cut.cut, run::LearnerChoice::Cut::All);
+  EXPECT_FALSE(cut.firstPredicted);
   ASSERT_EQ(cut.candidates.size(), 1u);
   EXPECT_EQ(cut.chosen, 0u);
   ASSERT_EQ(cut.scores[0].size(), 1u);
@@ -428,13 +432,38 @@ TEST(LearnerChoice, TrainsNoLearningBesideAndFitsAnAllowance) {
   EXPECT_EQ(nlohmann::json::parse(run::learnerChoiceJson(cut))["cut"], "all");
 }
 
+// A training of one update, timed first, predicts the first training (8 updates: 4.5 times its
+// one-update training): where that alone would pass the allowance, no training of the choice is
+// played, and the first candidate is kept untrained, said and recorded.
+TEST(LearnerChoice, AFirstTrainingPredictedPastTheAllowanceIsNotPlayed) {
+  const auto config = service::loadConfig(choosingConfig(), {});
+  SlowTrialRunner slow;  // Each training 1 s more: the first predicted at 4.5 s at least.
+  const auto untrained = run::chooseLearnerSettings(config, slow, 3.0, 1);
+  EXPECT_EQ(slow.calls, 1);
+  EXPECT_TRUE(untrained.firstPredicted);
+  EXPECT_EQ(untrained.cut, run::LearnerChoice::Cut::All);
+  ASSERT_EQ(untrained.candidates.size(), 1u);
+  EXPECT_TRUE(untrained.scores[0].empty());
+  EXPECT_GE(untrained.firstSeconds, 4.5);
+  EXPECT_FALSE(untrained.nothingLearns);
+  EXPECT_NE(run::learnerChoiceText(untrained).find("kept untrained"), std::string::npos);
+  const auto json = nlohmann::json::parse(run::learnerChoiceJson(untrained));
+  EXPECT_EQ(json["first_seconds_predicted"].get<double>(), untrained.firstSeconds);
+  // Without an allowance nothing is timed first: the same trainings as ever.
+  SlowTrialRunner counted(1000);
+  run::chooseLearnerSettings(config, counted);
+  const auto whole = run::chooseLearnerSettings(config, slow, 30.0, 1);
+  EXPECT_FALSE(whole.firstPredicted);
+  EXPECT_EQ(slow.calls - 1, counted.calls + 1);  // The one-update training more.
+}
+
 // The first candidate's whole cost, measured, sizes the others again: where they would pass the
 // allowance that the first training said they fit, the first candidate is kept, said.
 TEST(LearnerChoice, TheFirstCandidatesCostCutsTheOthersThatWouldPassTheAllowance) {
   const auto config = service::loadConfig(choosingConfig(), {});
   run::ThreadTrialRunner one(1);
   const auto whole = run::chooseLearnerSettings(config, one);
-  SlowTrialRunner slow(1);  // The first training fast.
+  SlowTrialRunner slow(2);  // The one-update training and the first training fast.
   // 1.5 s: the first training (milliseconds) predicts far less; the first candidate takes 1 s
   // more, so the two about 2 s.
   const auto cut = run::chooseLearnerSettings(config, slow, 1.5, 1);

@@ -159,25 +159,39 @@ TEST(TimeBudget, ABudgetTooShortForTheSmallestRunIsRefused) {
   EXPECT_NE(what.find("give at least"), std::string::npos) << what;
 }
 
-// A learner choice that took the whole budget (its first training alone) is refused at once,
-// predicted from that training, without timing one more.
-TEST(TimeBudget, AChoiceThatTookTheWholeBudgetIsRefusedWithoutTrainingMore) {
+// The trainings a cartpole-quick call with a learner choice and `budget` played before it was
+// refused, each a second long (SlowTrialRunner); a failure where it was accepted.
+int trainingsBeforeTheRefusal(const std::string& budget, const std::string& dir) {
   service::EvolveRequest request;
   request.config = "cartpole-quick";
-  request.overrides = {"time_budget=0.5", R"(learner.choose={ rprop = ["small", "large"] })"};
-  request.out = {freshDir("budget-choice-took-all"), false, "--out"};
+  request.overrides = {"time_budget=" + budget, R"(learner.choose={ rprop = ["small", "large"] })"};
+  request.out = {freshDir(dir), false, "--out"};
   auto runner = std::make_shared<SlowTrialRunner>();
   request.trialRunner = runner;
   service::EvolveProgress quiet;
   const std::atomic<bool> stop{false};
   try {
     service::evolve(request, quiet, stop);
-    FAIL() << "a 0.5 s budget was accepted";
+    ADD_FAILURE() << "a " << budget << " s budget was accepted with trainings of a second";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("is too short here: "), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("give at least"), std::string::npos) << e.what();
   }
-  EXPECT_EQ(runner->calls, 1);  // The choice's first training only.
+  return runner->calls;
+}
+
+// A learner choice that took the whole budget is refused at once, predicted from its training,
+// without timing one more.
+TEST(TimeBudget, AChoiceThatTookTheWholeBudgetIsRefusedWithoutTrainingMore) {
+  EXPECT_EQ(trainingsBeforeTheRefusal("0.5", "budget-choice-took-all"), 1);
+}
+
+// One training longer than the choice's share of a budget that the choice leaves mostly unspent
+// (Swimmer-v5 stepped in Python: 171-207 s a training, of 180): refused from the choice's
+// one-update training, before any whole training (cartpole-quick's confirmation: 50 updates, so
+// about 25 s predicted of a 10-s share).
+TEST(TimeBudget, AFirstTrainingPredictedPastTheChoicesShareIsRefusedBeforeItIsPlayed) {
+  EXPECT_EQ(trainingsBeforeTheRefusal("40", "budget-choice-predicted"), 1);
 }
 
 TEST(TimeBudget, ABudgetTooShortForItsRunsNamesTheWholeBudget) {

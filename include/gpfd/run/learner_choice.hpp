@@ -93,7 +93,10 @@ struct LearnerChoice {
   // Whether a candidate names another learner than the config's: the text and JSON then name
   // each one's learner and episodes.
   bool otherLearners = false;
-  double firstSeconds = 0.0;      // The first training (the original variables, first seed).
+  double firstSeconds = 0.0;  // The first training (the original variables, first seed).
+  // Under an allowance, the first training's seconds were predicted from one of a single unit of
+  // the learner's budget, and it was not played: alone it would pass the allowance (cut All).
+  bool firstPredicted = false;
   double predictedSeconds = 0.0;  // The whole choice's, predicted from it.
 };
 

@@ -59,6 +59,8 @@ struct BudgetSpent {
   double budget = 0.0;       // The whole budget, seconds.
   double choice = 0.0;       // Choosing the learner's settings (0: no choice).
   double choiceFirst = 0.0;  // Its first candidate's trainings, which it always makes.
+  // The choice's first training was predicted, not played: alone it passes the choice's share.
+  bool choiceFirstPredicted = false;
 };
 // A budget (a multiple of 10 s) that holds the choice, the measurement and `runsSeconds` of
 // runs at their smallest sizes, with a margin: what a refusal names.
@@ -98,10 +100,11 @@ double trialSecondsFrom(const ExperimentConfig& config, double seconds,
 // InputError at `where`, naming a budget that works (sufficientBudget), where the measurement
 // and `runs` smallest runs, predicted from `oneTraining` (each training at its cost, spread over
 // `workers`), cannot fit the `seconds` left: on a slow task the refusal comes before the
-// measurement, which alone may take longer than the budget.
+// measurement, which alone may take longer than the budget. `predictedTraining`: `oneTraining`
+// comes from another training than a trial's (the learner choice's), and the text says so.
 void refuseBeforeMeasuring(const ExperimentConfig& config, double oneTraining, int workers,
                            double seconds, const BudgetSpent& spent, const std::string& where,
-                           int runs);
+                           int runs, bool predictedTraining = false);
 
 // Sizes for each of `runs` runs of `seconds` (the measurement's time already spent), from
 // `config`'s own sizes as the upper bound of the validation's. InputError at `where` when not even
