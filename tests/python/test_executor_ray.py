@@ -23,9 +23,11 @@ ray = pytest.importorskip("ray")
 import gpfd.ray  # noqa: E402  (after the skip: it needs Ray)
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture
 def ray_cluster():
-    """A local Ray cluster whose workers import this directory's modules as this process does."""
+    """A local Ray cluster whose workers import this directory's modules as this process does,
+    one per test: a test's runs that failed on purpose may leave tasks queued on it (a hung task
+    retried), which would take the CPUs another test counts."""
     path = os.pathsep.join(sys.path)
     ray.init(
         num_cpus=2,
