@@ -74,10 +74,10 @@ class LaneCopies final : public BatchEnvironment {
   Env& instance(std::size_t lane) const {
     while (lanes_.size() <= lane) {
       auto copy = scalar().freshCopy();
-      auto* typed = dynamic_cast<Env*>(copy.get());
-      if (typed == nullptr) throw std::logic_error("lane by lane: a copy of a copy failed");
-      copy.release();
-      lanes_.emplace_back(typed);
+      if (dynamic_cast<Env*>(copy.get()) == nullptr) {
+        throw std::logic_error("lane by lane: a copy of a copy failed");
+      }
+      lanes_.emplace_back(static_cast<Env*>(copy.release()));
     }
     return *lanes_[lane];
   }
