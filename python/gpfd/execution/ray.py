@@ -58,7 +58,8 @@ class Executor(futures.Executor):
     after its worker died; ``cancel_force``: ``shutdown(cancel_futures=True)`` ends the worker
     processes of running tasks (``ray.cancel(force=True)``; a task hung in native code ignores
     the interruption otherwise, and so do the workers of a Ray started from a process that
-    ignores SIGINT, as a script run with ``nohup`` or ``&`` does); ``options``: more of Ray's task options (``resources``, ...)."""
+    ignores SIGINT, as a script run with ``nohup`` or ``&`` does); ``options``: more of Ray's
+    task options (``resources``, ...)."""
 
     def __init__(self, *, max_retries: int = 3, cancel_force: bool = False, **options: Any) -> None:
         try:
