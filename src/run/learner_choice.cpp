@@ -161,6 +161,22 @@ ExperimentConfig oneUnitTraining(ExperimentConfig config, LearningTask::Budget b
   return config;
 }
 
+// Wall seconds of `task`'s whole training on `seed`, predicted from a training of one unit of
+// its learner's budget, timed (a training of B units plays B + 1 rows of episodes); 0 where the
+// learner's budget has no more than one unit.
+double predictedFromOneUnit(const ExperimentConfig& trained, const LearningTask& task,
+                            LearningTask::Budget budget, TrialRunner& runner, std::uint64_t seed) {
+  const auto& info = rl::LearnerRegistry::global().info(trained.learner);
+  const auto units = info.budgetParam.empty() ? 0 : budgetValue(info, task.learnerParams());
+  if (units <= 1) return 0.0;
+  const auto start = std::chrono::steady_clock::now();
+  runner.run(LearningTask(oneUnitTraining(trained, budget), budget),
+             {{TrialFeatures::original()}, {{seed}}}, {});
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return seconds * static_cast<double>(units + 1) / 2.0;
+}
+
 }  // namespace
 
 std::string candidateLearner(const ExperimentConfig& config, const Params& candidate) {
@@ -303,23 +319,17 @@ LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner&
       choice.noLearningMeans.push_back(kWorst);
       choice.merits.push_back(choice.means.back());
     };
-    if (c == 0 && std::isfinite(allowance)) {
-      // A training of one unit first, timed: where the whole training alone would pass the
-      // allowance, none is played (Swimmer-v5 stepped in Python: one training 171-207 s, of a
-      // 180-s budget, docs/results/budget-call/). A training of B units plays B + 1 rows.
-      const auto& info = rl::LearnerRegistry::global().info(trained.learner);
-      const auto units = info.budgetParam.empty() ? 0 : budgetValue(info, task.learnerParams());
-      if (units > 1) {
-        const LearningTask unit(oneUnitTraining(trained, budget), budget);
-        runner.run(unit, {{TrialFeatures::original()}, {{seeds[0]}}}, {});
-        const double predicted = elapsed() * static_cast<double>(units + 1) / 2.0;
-        if (predicted > allowance) {
-          choice.firstSeconds = choice.predictedSeconds = predicted;
-          choice.firstPredicted = true;
-          keepFirstOnly();
-          break;
-        }
-      }
+    // Under an allowance, a training of one unit first: where the whole first training alone
+    // would pass it, none is played (Swimmer-v5 stepped in Python: one training 171-207 s, of a
+    // 180-s budget, docs/results/budget-call/).
+    const double predicted = c == 0 && std::isfinite(allowance)
+                                 ? predictedFromOneUnit(trained, task, budget, runner, seeds[0])
+                                 : 0.0;
+    if (predicted > allowance) {
+      choice.firstSeconds = choice.predictedSeconds = predicted;
+      choice.firstPredicted = true;
+      keepFirstOnly();
+      break;
     }
     if (c == 0) {
       // One training, timed, sizes the rest: all of it where it fits the allowance, else
