@@ -52,15 +52,16 @@ class Failure(Exception):
     pass
 
 
-def compare_outputs():
-    """scripts/compare-outputs as a module: its comparison of two results directories."""
-    path = str(SOURCE / "scripts" / "compare-outputs")
-    return importlib.machinery.SourceFileLoader("compare_outputs", path).load_module()
+def output_compare():
+    """scripts/lib/output_compare.py, scripts/compare-outputs' comparison of two results
+    directories."""
+    path = str(SOURCE / "scripts" / "lib" / "output_compare.py")
+    return importlib.machinery.SourceFileLoader("output_compare", path).load_module()
 
 
 def differences(reference: Path, run: Path) -> list[str]:
     """Files that differ beyond timings; run.json may differ in mpi_processes and threads."""
-    found = compare_outputs().compare(reference, run)
+    found = output_compare().compare(reference, run)
     if "differs: run.json" in found:
 
         def setup_free(path: Path) -> dict:
