@@ -33,7 +33,7 @@ namespace {
 nb::tuple evolve(const std::string& config, const std::vector<std::string>& overrides,
                  std::optional<std::string> out, bool force, const std::string& resume, int threads,
                  std::optional<int> generations, std::optional<int> runs, nb::object onGeneration,
-                 nb::object evaluate, std::optional<bool> verbose, nb::object observer,
+                 nb::object evaluate, const nb::object& verbose, nb::object observer,
                  const std::string& outName, const std::string& resumeCommand,
                  nb::object interrupted, const std::string& envJson, const std::string& replay) {
   service::EvolveRequest request;

@@ -52,7 +52,7 @@ service::TextSink pythonStream(const char* name) {
 
 }  // namespace
 
-PythonProgress::PythonProgress(nb::object onGeneration, std::optional<bool> verbose,
+PythonProgress::PythonProgress(nb::object onGeneration, const nb::object& verbose,
                                nb::object observer, const std::string& resumeCommand,
                                nb::object interrupted, std::atomic<bool>& stop)
     : onGeneration_(std::move(onGeneration)),
@@ -61,8 +61,8 @@ PythonProgress::PythonProgress(nb::object onGeneration, std::optional<bool> verb
       text_({.out = pythonStream("stdout"),
              .err = pythonStream("stderr"),
              .terminal = false,
-             .quiet = verbose == false,
-             .outcomeOnly = !verbose.has_value() && observer_.is_none(),
+             .quiet = !verbose.is_none() && !nb::cast<bool>(verbose),
+             .outcomeOnly = verbose.is_none() && observer_.is_none(),
              .resumeCommand = resumeCommand}),
       stop_(stop) {}
 

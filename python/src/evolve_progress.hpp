@@ -33,7 +33,10 @@ struct Interruption {
 // Interruption is kept for gpfd.evolve's KeyboardInterrupt.
 class PythonProgress final : public service::EvolveProgress {
  public:
-  PythonProgress(nb::object onGeneration, std::optional<bool> verbose, nb::object observer,
+  // `verbose`: None, True or False, read as a Python object: a disengaged std::optional<bool>'s
+  // payload is uninitialised, and gcc -O3 tested it before the flag (valgrind: a conditional jump
+  // on an uninitialised value, scripts/check-lockstep-memory --valgrind).
+  PythonProgress(nb::object onGeneration, const nb::object& verbose, nb::object observer,
                  const std::string& resumeCommand, nb::object interrupted, std::atomic<bool>& stop);
   ~PythonProgress() override { stopPolling(); }
 

@@ -269,7 +269,8 @@ std::vector<std::map<std::string, std::string>> learnerCandidates(const Experime
 }
 
 LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner& runner,
-                                    double allowance, int workers) {
+                                    double allowance, int workers,
+                                    const std::function<void(double)>& predicted) {
   const auto start = std::chrono::steady_clock::now();
   const auto elapsed = [&start] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -322,11 +323,12 @@ LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner&
     // Under an allowance, a training of one unit first: where the whole first training alone
     // would pass it, none is played (Swimmer-v5 stepped in Python: one training 171-207 s, of a
     // 180-s budget, docs/results/budget-call/).
-    const double predicted = c == 0 && std::isfinite(allowance)
-                                 ? predictedFromOneUnit(trained, task, budget, runner, seeds[0])
-                                 : 0.0;
-    if (predicted > allowance) {
-      choice.firstSeconds = choice.predictedSeconds = predicted;
+    const double first = c == 0 && std::isfinite(allowance)
+                             ? predictedFromOneUnit(trained, task, budget, runner, seeds[0])
+                             : 0.0;
+    if (first > 0.0 && predicted) predicted(first);
+    if (first > allowance) {
+      choice.firstSeconds = choice.predictedSeconds = first;
       choice.firstPredicted = true;
       keepFirstOnly();
       break;

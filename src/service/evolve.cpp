@@ -126,13 +126,42 @@ std::optional<run::ExperimentConfig> expectedConfig(const EvolveRequest& request
   return expected;
 }
 
+constexpr const char* kBudgetWhere = "time_budget (--time-budget)";
+
+// The whole training's budget (LearningTask::Budget) the learner's choice trains under.
+run::LearningTask::Budget choiceBudget(const run::ExperimentConfig& config) {
+  return config.validation.confirms() ? run::LearningTask::Budget::Confirmation
+                                      : run::LearningTask::Budget::Validation;
+}
+
 // Chooses the learner's settings of learner.choose on the task (run/learner_choice.hpp), with
 // the trial runner the run will use, within run::kChoiceShare of a time budget; says what it
 // chose and records it for run.json, and what it took in `spent`. InputError where nothing
-// learns (run::LearnerChoice::nothingLearns).
-run::ExperimentConfig chooseLearner(const run::ExperimentConfig& config,
+// learns (run::LearnerChoice::nothingLearns), and under a budget where the first training,
+// predicted from one of a single update, tells that `runs` cannot fit, before it is played.
+run::ExperimentConfig chooseLearner(const run::ExperimentConfig& config, int runs,
                                     run::DiscoveryOptions& options, run::BudgetSpent& spent,
                                     EvolveProgress& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  // Refused where, were the choice to take nothing more, the measurement and the smallest run
+  // would not fit in twice what is left: before the choice plays a first training that fits its
+  // share but not the call (Swimmer-v5 in Python: one of 4 calls played one, refused after 95.5 s
+  // of 180; it needed 55 times the budget). Twice, as the prediction scales the one-update
+  // training's fixed cost with the rest (a Python toy task: 0.24 s, mostly the first call's), and
+  // the choice's own measurement refuses the calls nearer the line.
+  constexpr double kPredictionTolerance = 2.0;
+  const auto refuseFromPrediction = [&](double firstTraining) {
+    run::BudgetSpent predicted = spent;
+    predicted.choice =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    predicted.choiceFirst = firstTraining;
+    predicted.choiceFirstPredicted = true;
+    const auto first = run::withCandidate(config, run::learnerCandidates(config).at(0));
+    const double one = run::trialSecondsFrom(first, firstTraining, choiceBudget(first));
+    run::refuseBeforeMeasuring(first, one, options.threads,
+                               kPredictionTolerance * (config.timeBudget - predicted.choice),
+                               predicted, kBudgetWhere, runs, true);
+  };
   run::ThreadTrialRunner threads(options.threads);
   run::TrialRunner& runner = options.trialRunner ? *options.trialRunner : threads;
   const double allowance = config.timeBudget > 0.0 ? run::kChoiceShare * config.timeBudget
@@ -146,7 +175,8 @@ run::ExperimentConfig chooseLearner(const run::ExperimentConfig& config,
           : std::string(),
       config.timeBudget > 0.0 ? fmt::format(", within {:.0f} s of the budget", allowance)
                               : std::string()));
-  const auto choice = run::chooseLearnerSettings(config, runner, allowance, options.threads);
+  const auto choice =
+      run::chooseLearnerSettings(config, runner, allowance, options.threads, refuseFromPrediction);
   progress.preparedRun(run::learnerChoiceText(choice));
   if (choice.nothingLearns) {
     throw InputError(run::nothingLearnsText(choice), "learner.choose (" + config.env + ")");
@@ -163,7 +193,7 @@ run::ExperimentConfig chooseLearner(const run::ExperimentConfig& config,
 run::ExperimentConfig sizeToBudget(const run::ExperimentConfig& config, int runs,
                                    const run::BudgetSpent& spent, run::DiscoveryOptions& options,
                                    double& perRunSeconds, EvolveProgress& progress) {
-  const std::string where = "time_budget (--time-budget)";
+  const std::string where = kBudgetWhere;
   if (options.processes > 1) {
     throw InputError("a time budget is not measured under MPI: give the sizes instead", where);
   }
@@ -173,9 +203,7 @@ run::ExperimentConfig sizeToBudget(const run::ExperimentConfig& config, int runs
     // now where the measurement and the smallest run do not fit, predicted from its first
     // training, not after one training more (Swimmer-v5 on a loaded machine: 189 s, then 171 s
     // more, of 180).
-    const auto budget = config.validation.confirms() ? run::LearningTask::Budget::Confirmation
-                                                     : run::LearningTask::Budget::Validation;
-    const double one = run::trialSecondsFrom(config, spent.choiceFirst, budget);
+    const double one = run::trialSecondsFrom(config, spent.choiceFirst, choiceBudget(config));
     run::refuseBeforeMeasuring(config, one, options.threads, left, spent, where, runs, true);
   }
   progress.preparing(
@@ -341,7 +369,7 @@ EvolveResult evolve(const EvolveRequest& request, EvolveProgress& progress,
   run::BudgetSpent spent;  // What choosing the learner's settings took.
   spent.budget = config.timeBudget;
   double perRunSeconds = 0.0;  // A time budget's share of each run.
-  if (run::choosesLearner(config)) config = chooseLearner(config, options, spent, progress);
+  if (run::choosesLearner(config)) config = chooseLearner(config, runs, options, spent, progress);
   if (config.timeBudget > 0.0) {
     config = sizeToBudget(config, runs, spent, options, perRunSeconds, progress);
   }

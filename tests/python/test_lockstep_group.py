@@ -220,6 +220,11 @@ def test_two_lambdas_one_after_the_other_are_two_environments(tmp_path):
         ),
         (lambda: gpfd.evolve(env=Toy, runs=0), ValueError, "runs must be at least 1, got 0"),
         (lambda: gpfd.evolve(env=Toy, generations=-1), ValueError, "generations must be at"),
+        (
+            lambda: gpfd.evolve(env=Toy, verbose="yes"),  # type: ignore[arg-type]
+            TypeError,
+            r"verbose must be None, True or False, not str \('yes'\)",
+        ),
     ],
 )
 def test_bad_python_arguments_are_errors_that_name_them(call, error, message):

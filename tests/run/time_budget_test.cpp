@@ -160,13 +160,14 @@ TEST(TimeBudget, ABudgetTooShortForTheSmallestRunIsRefused) {
 }
 
 // The trainings a cartpole-quick call with a learner choice and `budget` played before it was
-// refused, each a second long (SlowTrialRunner); a failure where it was accepted.
+// refused, each a second long (SlowTrialRunner); a failure where it was accepted, or went on past
+// 10 trainings.
 int trainingsBeforeTheRefusal(const std::string& budget, const std::string& dir) {
   service::EvolveRequest request;
   request.config = "cartpole-quick";
   request.overrides = {"time_budget=" + budget, R"(learner.choose={ rprop = ["small", "large"] })"};
   request.out = {freshDir(dir), false, "--out"};
-  auto runner = std::make_shared<SlowTrialRunner>();
+  auto runner = std::make_shared<SlowTrialRunner>(0, 10);
   request.trialRunner = runner;
   service::EvolveProgress quiet;
   const std::atomic<bool> stop{false};
@@ -176,6 +177,8 @@ int trainingsBeforeTheRefusal(const std::string& budget, const std::string& dir)
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("is too short here: "), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("give at least"), std::string::npos) << e.what();
+  } catch (const SlowTrialRunner::TooManyTrainings&) {
+    ADD_FAILURE() << "a " << budget << " s budget went on past 10 trainings of a second";
   }
   return runner->calls;
 }
@@ -192,6 +195,14 @@ TEST(TimeBudget, AChoiceThatTookTheWholeBudgetIsRefusedWithoutTrainingMore) {
 // about 25 s predicted of a 10-s share).
 TEST(TimeBudget, AFirstTrainingPredictedPastTheChoicesShareIsRefusedBeforeItIsPlayed) {
   EXPECT_EQ(trainingsBeforeTheRefusal("40", "budget-choice-predicted"), 1);
+}
+
+// A first training predicted within the choice's share (25.5 s of 30), of a call that cannot fit
+// anyway (measuring alone about 490 s): refused from the one-update training, before the choice
+// plays a whole one (Swimmer-v5 in Python: one of 4 calls with the default budget played its
+// first training, and was refused after 95.5 s of 180).
+TEST(TimeBudget, ACallTheFirstTrainingsPredictionCannotFitIsRefusedBeforeItIsPlayed) {
+  EXPECT_EQ(trainingsBeforeTheRefusal("120", "budget-choice-predicted-call"), 1);
 }
 
 TEST(TimeBudget, ABudgetTooShortForItsRunsNamesTheWholeBudget) {

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <map>
 #include <string>
@@ -107,9 +108,13 @@ struct LearnerChoice {
 // left out, or where that is not enough the first candidate is kept without trying the others, or
 // where even its trainings do not fit, without more trainings (said, and recorded:
 // LearnerChoice::cut). The choice then depends on the clock; config.toml records what it chose.
-LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner& runner,
-                                    double allowance = std::numeric_limits<double>::infinity(),
-                                    int workers = 1);
+// Under an allowance the first training is predicted from one of a single unit first, and
+// `predicted` is called with its wall seconds before any whole training is played: a caller that
+// can tell the call will not fit refuses it there (by throwing).
+LearnerChoice chooseLearnerSettings(
+    const ExperimentConfig& config, TrialRunner& runner,
+    double allowance = std::numeric_limits<double>::infinity(), int workers = 1,
+    const std::function<void(double firstTrainingSeconds)>& predicted = {});
 
 // `config` with the chosen candidate (withCandidate) and no choice left.
 ExperimentConfig withLearnerChoice(ExperimentConfig config, const LearnerChoice& choice);

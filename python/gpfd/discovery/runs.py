@@ -508,6 +508,10 @@ def evolve(
     threads = _whole("threads", threads, 0)
     if generations is not None:
         generations = _whole("generations", generations, 0)
+    if verbose is not None and not isinstance(verbose, bool):
+        raise TypeError(
+            f"verbose must be None, True or False, not {type(verbose).__name__} ({verbose!r})"
+        )
     env = _twin_or_gymnasium(env, env_kwargs, native, executor, say=verbose is not False)
     out_name = ""
     if replay is not None:
