@@ -194,9 +194,6 @@ run::ExperimentConfig sizeToBudget(const run::ExperimentConfig& config, int runs
                                    const run::BudgetSpent& spent, run::DiscoveryOptions& options,
                                    double& perRunSeconds, EvolveProgress& progress) {
   const std::string where = kBudgetWhere;
-  if (options.processes > 1) {
-    throw InputError("a time budget is not measured under MPI: give the sizes instead", where);
-  }
   double left = config.timeBudget - spent.choice;
   if (spent.choice > 0.0 && (left <= 0.0 || spent.choiceFirstPredicted)) {
     // The choice took the whole budget, or found one training longer than its share: refused
@@ -369,6 +366,10 @@ EvolveResult evolve(const EvolveRequest& request, EvolveProgress& progress,
   run::BudgetSpent spent;  // What choosing the learner's settings took.
   spent.budget = config.timeBudget;
   double perRunSeconds = 0.0;  // A time budget's share of each run.
+  if (config.timeBudget > 0.0 && options.processes > 1) {
+    throw InputError("a time budget is not measured under MPI: give the sizes instead",
+                     kBudgetWhere);
+  }
   if (run::choosesLearner(config)) config = chooseLearner(config, runs, options, spent, progress);
   if (config.timeBudget > 0.0) {
     config = sizeToBudget(config, runs, spent, options, perRunSeconds, progress);

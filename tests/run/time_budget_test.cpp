@@ -205,6 +205,27 @@ TEST(TimeBudget, ACallTheFirstTrainingsPredictionCannotFitIsRefusedBeforeItIsPla
   EXPECT_EQ(trainingsBeforeTheRefusal("120", "budget-choice-predicted-call"), 1);
 }
 
+// Under MPI a budget is refused before anything is timed, the learner's choice included.
+TEST(TimeBudget, ABudgetUnderMpiIsRefusedBeforeTheChoiceTrains) {
+  service::EvolveRequest request;
+  request.config = "cartpole-quick";
+  request.overrides = {"time_budget=600", R"(learner.choose={ rprop = ["small", "large"] })"};
+  request.out = {freshDir("budget-mpi"), false, "--out"};
+  request.processes = 2;
+  auto runner = std::make_shared<SlowTrialRunner>(0, 1);
+  request.trialRunner = runner;
+  service::EvolveProgress quiet;
+  const std::atomic<bool> stop{false};
+  try {
+    service::evolve(request, quiet, stop);
+    ADD_FAILURE() << "a budget under MPI was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("not measured under MPI"), std::string::npos) << e.what();
+    EXPECT_NE(e.where().find("time_budget"), std::string::npos) << e.where();
+  }
+  EXPECT_EQ(runner->calls, 0);
+}
+
 TEST(TimeBudget, ABudgetTooShortForItsRunsNamesTheWholeBudget) {
   const std::string what = budgetRefusal("0.5", 4, "budget-short-runs").what();
   ASSERT_FALSE(what.empty()) << "a 0.5 s budget for 4 runs was accepted";
