@@ -439,6 +439,7 @@ def test_mpi4py_pool_with_every_rank_hung_stops_and_resumes(tmp_path, hung_refer
     assert error.exists(), done.stdout + done.stderr
     said = error.read_text()
     assert "task of python:Hangs ends within task_timeout=3 s" in said, said
+    assert "task_timeout=3 s in python:Hangs: step " in said, said  # A rank told the master.
     assert "resume= continues" in said, said
     assert "task_timeout=3 s in python:Hangs: step " in done.stderr, done.stderr[-3000:]
     assert resumed_mended(tmp_path / "mpi") == hung_reference

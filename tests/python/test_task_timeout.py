@@ -17,7 +17,7 @@ from typing import Any
 import pytest
 
 import gpfd
-from gpfd.execution import _deadline
+from gpfd.execution import _deadline, _expired
 from gpfd.workers import WorkerError
 from point_env import Point
 from test_executors import process_pool
@@ -139,6 +139,7 @@ def test_a_task_hung_on_every_dask_worker_stops_and_resumes(tmp_path, reference)
         cluster.close()
     text = str(caught.value)
     assert "a task of python:Hangs" in text and "task_timeout=3 s" in text, text
+    assert "task_timeout=3 s in python:Hangs: step " in text, text  # A worker told the step.
     assert "resume= continues" in text, text
     assert resumed_mended(tmp_path / "run") == reference
 
@@ -199,6 +200,17 @@ def test_no_deadline_where_nothing_could_end_a_hung_step(tmp_path):
     with pytest.raises(gpfd.InputError, match=r"threads=1 and no executor"):  # The config key.
         common = {**COMMON, "set": {**SMALL, "task_timeout": 5}}
         evolve(tmp_path, "key", once=True, arm=False, **common, threads=1)
+
+
+def test_an_error_names_the_first_texts_told_and_counts_the_rest():
+    texts = [f"step {i}" for i in range(5)]
+    assert _expired.named(texts[:2]) == "step 0; step 1"
+    assert _expired.named(texts) == "step 0; step 1; step 2; and 2 more"
+
+
+def test_a_process_that_is_no_dask_worker_has_no_one_to_tell():
+    pytest.importorskip("distributed")  # Imported: get_worker() is asked, and finds none.
+    assert _expired.teller() is None
 
 
 def test_seconds_of_reads_the_root_key_only():

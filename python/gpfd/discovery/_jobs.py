@@ -22,7 +22,9 @@ executor cannot replace a worker that a task's ``task_timeout`` ended
 (gpfd.execution._deadline): with a deadline T, every task ends within T + GRACE (or its worker
 does), so a round that has had no result for ``2 x (T + GRACE + LOST_AFTER)`` (from the silence
 that sends lost tasks again, at least) has no worker left that takes its tasks, and stops with
-WorkerError (each ended worker has named its environment's step on its stderr, the job's).
+WorkerError, naming the environment's step that each ended worker told the driver
+(gpfd.execution._expired: where mpi4py's master is in its workers' COMM_WORLD; each also prints
+it on its stderr, the job's).
 
 A task's result depends on its job, genomes and seeds only, never on where it ran or how many
 times it was sent: the same seed gives the same run on any executor.
@@ -44,7 +46,7 @@ import cloudpickle
 
 from gpfd import _core
 from gpfd.adapters import user_env
-from gpfd.execution import _deadline
+from gpfd.execution import _deadline, _expired
 from gpfd.execution.workers import WorkerError
 
 KEEP_JOBS = 16
@@ -95,7 +97,9 @@ def run(key: str, payload: bytes | None, function: Callable[..., Any], *args: An
     """A task, in a worker: ``function(config_text, *args)`` under the job `key`, with the job's
     environment registered under its name; NeedJob when this process holds no such job and
     `payload` (the job, from Jobs.payload) is None. Past the config's ``task_timeout`` the
-    process ends (gpfd.execution._deadline): the executor takes its worker as lost."""
+    process ends (gpfd.execution._deadline), having told the driver where the task was where the
+    executor has no channel of its own (gpfd.execution._expired): the executor takes its worker
+    as lost."""
     with _lock:
         if key not in _jobs or _jobs[key][0] not in _envs:
             if payload is None:
@@ -105,7 +109,7 @@ def run(key: str, payload: bytes | None, function: Callable[..., Any], *args: An
         env_key, config_text, timeout = _jobs[key]
         _envs.move_to_end(env_key)
         name, factory = _envs[env_key]
-        with _deadline.guard(timeout):
+        with _deadline.guard(timeout, None if timeout is None else _expired.teller()):
             if _registered.get(name) != env_key:  # Registering again drops the tasks built.
                 user_env.register(name, factory)
                 _registered[name] = env_key
@@ -197,9 +201,11 @@ class Jobs:
         sent_at: dict[Future, float] = {}
         out: dict[int, list[Future]] = {}  # Task -> its copies out.
         silent = loses_tasks_silently(executor)
-        # With a deadline, a copy out this long has lost its worker (above), on such executors.
+        # With a deadline, a copy out this long has lost its worker (above), on such executors;
+        # the round hears where each such worker's task was, where it can (gpfd.execution._expired).
         expiry = _deadline.seconds_of(config_text) if silent else None
         dead_after = None if expiry is None else expiry + _deadline.GRACE + LOST_AFTER
+        heard = None if expiry is None else _expired.MpiListener()
         # Tasks whose copy could not be sent -> when: sent again at the next result, or after
         # RESEND_PAUSE.
         unsent: dict[int, float] = {}
@@ -233,7 +239,8 @@ class Jobs:
                     given_up = answered + max(quiet, dead_after) + dead_after
                     timeout = max(0.0, min(last + quiet, given_up) - time.monotonic())
                     if time.monotonic() >= given_up:
-                        raise self._no_worker_left(executor, expiry, time.monotonic() - answered)
+                        silence = time.monotonic() - answered
+                        raise self._no_worker_left(executor, expiry, silence, heard)
                 if unsent:
                     due = max(0.0, min(unsent.values()) + RESEND_PAUSE - time.monotonic())
                     timeout = due if timeout is None else min(timeout, due)
@@ -257,7 +264,7 @@ class Jobs:
                             break
                         failures[i] = failures.get(i, 0) + 1
                         silence = time.monotonic() - answered
-                        self._unsent(executor, e, failures[i], copies, silence, quiet)
+                        self._unsent(executor, e, failures[i], copies, silence, quiet, heard)
                         unsent[i] = time.monotonic()
                         continue
                     if isinstance(value, NeedJob):
@@ -282,6 +289,8 @@ class Jobs:
                     raise error
         finally:
             self.cancel()
+            if heard is not None:
+                heard.close()
 
     def _unsent(
         self,
@@ -291,20 +300,24 @@ class Jobs:
         workers: int,
         silence: float,
         quiet: float | None,
+        heard: _expired.MpiListener | None,
     ) -> None:
         """Takes a task that `executor` could not send to a worker (`error`, its `times`-th
         failure since the round's last result, `silence` seconds ago) as lost, to be sent again;
         a WorkerError once it has failed more often than there are workers and the round has
         gone `quiet` (LOST_AFTER before any result) without a result: no worker is reachable.
         mpi4py's pool keeps a dead rank among its idle ones, first in line after a live one's
-        task: a send to it fails again and again while the live ones are busy."""
+        task: a send to it fails again and again while the live ones are busy. The error names
+        what the workers that a deadline ended told it (`heard`)."""
         name = type(executor).__name__
         if times > max(workers, 1) and silence >= (LOST_AFTER if quiet is None else quiet):
+            said = heard.texts() if heard is not None else []
+            ended = f" (ended by a task's deadline: {_expired.named(said)})" if said else ""
             raise WorkerError(
                 f"{name} could not send a task to any worker ({times} tries, no result for "
                 f"{silence:.1f} s; the last error: {type(error).__name__}: {error}): its workers "
-                "are lost. The work stops; a discovery's directory keeps its last complete "
-                "generation, which resume= continues (with a working executor)."
+                f"are lost{ended}. The work stops; a discovery's directory keeps its last "
+                "complete generation, which resume= continues (with a working executor)."
             ) from error
         self.resent += 1
         if not self._told:
@@ -317,12 +330,22 @@ class Jobs:
                 flush=True,
             )
 
-    def _no_worker_left(self, executor: Executor, expiry: float, silence: float) -> WorkerError:
+    def _no_worker_left(
+        self, executor: Executor, expiry: float, silence: float, heard: _expired.MpiListener | None
+    ) -> WorkerError:
+        """The error of a round whose workers its deadline has all ended, naming where the tasks
+        were, as the workers told (`heard`), or else saying where they printed it."""
+        said = heard.texts() if heard is not None else []
+        where = (
+            f"where the tasks were, as the workers told: {_expired.named(said)}"
+            if said
+            else "each ended by its task's deadline printed where the task was, the "
+            "environment's step, to its stderr: the job's"
+        )
         return WorkerError(
             f"no result from {type(executor).__name__} for {silence:.1f} s, while a task of "
             f"{self.name} ends within task_timeout={expiry:g} s or ends its worker: its workers "
-            "are lost, which it cannot replace (each ended by its task's deadline printed "
-            "where the task was, the environment's step, to its stderr: the job's)"
+            f"are lost, which it cannot replace ({where})"
         )
 
     def _quiet(self, key: str) -> float | None:

@@ -26,7 +26,7 @@ import gymnasium as gym
 from gpfd.adapters import sources, vector_cache
 from gpfd.discovery import _jobs
 from gpfd.errors import InputError
-from gpfd.execution import _deadline
+from gpfd.execution import _deadline, _expired
 from gpfd.execution.workers import WorkerError, WorkerPool
 
 # Fitness evaluations played together in one vector environment (a lockstep group) where the
@@ -155,7 +155,8 @@ class Evaluator:
 
     def _round(self, results: Iterator, expiry: float | None) -> Iterator:
         """`results`, a lost worker's or a broken executor's error a WorkerError saying that
-        resume= continues (`expiry`: the task_timeout, which a Dask error names)."""
+        resume= continues (`expiry`: the task_timeout, which a Dask error names, with where its
+        task was as the last worker its deadline ended told: gpfd.execution._expired)."""
         self._busy = True
         try:
             yield from results
@@ -186,8 +187,11 @@ class Evaluator:
                 raise
             ended = ""
             if expiry is not None:
-                ended = f", each ended by task_timeout={expiry:g} s if it ran past it (its stderr "
-                ended += "names the environment's step)"
+                told = _expired.dask_text(self._executor, getattr(e, "task", None))
+                said = f"the last one it ended said: {told}"
+                if not told:
+                    said = "its stderr names the environment's step"
+                ended = f", each ended by task_timeout={expiry:g} s if it ran past it ({said})"
             raise WorkerError(
                 f"Dask gave up a task of {self.name}: its workers died running it{ended} ({e}). "
                 "The work stops; a discovery's directory keeps its last complete generation, "

@@ -11,7 +11,9 @@ GRACE seconds later: it prints every thread's Python traceback to stderr and exi
 Before the process ends, the watching thread reports where the task was (``where``: the
 environment and the step of its episode that the adapters note as they call the environment):
 to stderr, or through ``report`` where the worker has a channel to its parent
-(gpfd.execution._worker sends it to gpfd's pool, which names it in its WorkerError).
+(gpfd.execution._worker sends it to gpfd's pool, gpfd.execution.ray to Ray's key-value store),
+and through the guard's ``tell`` on Dask and mpi4py (gpfd.execution._expired, which says where
+mpi4py has no way): the executor's WorkerError names it.
 """
 
 from __future__ import annotations
@@ -71,9 +73,10 @@ def expired_text(seconds: float) -> str:
 
 
 @contextlib.contextmanager
-def guard(seconds: float | None) -> Iterator[None]:
+def guard(seconds: float | None, tell: Callable[[str], None] | None = None) -> Iterator[None]:
     """Runs the body under a deadline of `seconds` (none where None): past it, ``report`` is
-    called with expired_text and the process exits with EXIT_CODE."""
+    called with expired_text, then `tell` where given (the driver's channel of an executor that
+    has none of its own: gpfd.execution._expired), and the process exits with EXIT_CODE."""
     if seconds is None:
         yield
         return
@@ -82,8 +85,11 @@ def guard(seconds: float | None) -> Iterator[None]:
     def watch() -> None:
         if done.wait(seconds):
             return
-        with contextlib.suppress(BaseException):
-            report(expired_text(seconds))
+        text = expired_text(seconds)
+        for say in (report, tell):
+            with contextlib.suppress(BaseException):
+                if say is not None:
+                    say(text)
         os._exit(EXIT_CODE)
 
     watcher = threading.Thread(target=watch, name="gpfd-task-deadline", daemon=True)
