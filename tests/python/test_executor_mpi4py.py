@@ -410,13 +410,25 @@ def run_hang_script(tmp_path: Path, name: str, once: bool, seconds: float):
     script = tmp_path / "hang.py"
     script.write_text(HANG_SCRIPT)
     program = [sys.executable, "-m", "mpi4py.futures", str(script), str(tmp_path), name]
+    # SIGPIPE ignored in mpiexec (restore_signals=False keeps Python's SIG_IGN): hydra writes to
+    # the socket of a proxy whose rank its deadline ended, and SIGPIPE ended it at times (exit
+    # -13, the master with it, nothing written: docs/mpi.md, "Lost workers").
     return subprocess.run(
         [*mpiexec, *program, "once" if once else "every", str(seconds)],
         env=env,
         timeout=300,
         capture_output=True,
         text=True,
+        restore_signals=False,
     )
+
+
+def hydra_died(done: subprocess.CompletedProcess) -> bool:
+    """Whether mpiexec (hydra) itself ended as the ranks that their deadlines end died together:
+    told of one death, it signals the other proxies (SIGUSR1), one of them just gone, and gives up
+    on the failed write (exit 255, "unable to send SIGUSR1 downstream"), ending the master with it
+    (in 2 of 20 runs on a loaded machine; docs/mpi.md, "Lost workers")."""
+    return done.returncode == 255 and "unable to send SIGUSR1 downstream" in done.stderr
 
 
 def test_mpi4py_pool_runs_a_task_hung_once_again_on_another_rank(tmp_path, hung_reference):
@@ -428,18 +440,23 @@ def test_mpi4py_pool_runs_a_task_hung_once_again_on_another_rank(tmp_path, hung_
     assert run_files(tmp_path / "mpi") == hung_reference
 
 
-@pytest.mark.isolated  # Failed after the whole suite's collection, not alone.
+@pytest.mark.isolated  # Failed in the whole suite (hydra_died, now tried again); still apart.
 def test_mpi4py_pool_with_every_rank_hung_stops_and_resumes(tmp_path, hung_reference):
     """Each rank's deadline ends it and mpi4py's pool cannot replace it: the run stops with a
     WorkerError naming the environment, each rank having printed its step to the job's stderr;
     the directory resumes (on threads) to the same run."""
-    done = run_hang_script(tmp_path, "mpi", once=False, seconds=3)
+    for attempt in range(3):  # Again where hydra itself ended (hydra_died).
+        where = tmp_path / f"attempt-{attempt}"
+        where.mkdir()
+        done = run_hang_script(where, "mpi", once=False, seconds=3)
+        if not hydra_died(done):
+            break
     assert done.returncode != 0
-    error = tmp_path / "mpi-error.txt"
-    assert error.exists(), done.stdout + done.stderr
+    error = where / "mpi-error.txt"
+    assert error.exists(), f"exit code {done.returncode}: " + done.stdout + done.stderr
     said = error.read_text()
     assert "task of python:Hangs ends within task_timeout=3 s" in said, said
     assert "task_timeout=3 s in python:Hangs: step " in said, said  # A rank told the master.
     assert "resume= continues" in said, said
     assert "task_timeout=3 s in python:Hangs: step " in done.stderr, done.stderr[-3000:]
-    assert resumed_mended(tmp_path / "mpi") == hung_reference
+    assert resumed_mended(where / "mpi") == hung_reference
