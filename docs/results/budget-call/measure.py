@@ -4,7 +4,8 @@ in Python, and says whether it ended within the budget + 10% or was refused with
     .venv/bin/python docs/results/budget-call/measure.py CASE BUDGET [--out DIR] [--seed S]
 
 CASE: ``sleepy`` (CartPole-v1 whose step sleeps 0.2 ms), ``acrobot`` (Acrobot-v1, Gymnasium's
-own: native=False), ``swimmer`` (Swimmer-v5, needs gymnasium[mujoco]). BUDGET: seconds, or
+own: native=False), ``swimmer`` (Swimmer-v5, needs gymnasium[mujoco]), ``mountaincar``
+(MountainCar-v0 as a user calls it: gpfd's twin). BUDGET: seconds, or
 ``default`` (user-env's 3 minutes). Runs the call in a child interpreter with verbose=True and
 prints each line it prints with the seconds since the call began, then one summary line (JSON):
 the wall time, the first line's time, the outcome, and the generations said.
@@ -30,11 +31,14 @@ def sleepy():
     return Sleepy(gym.make("CartPole-v1"))
 
 case, budget, out, seed = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
-env = {"sleepy": sleepy, "acrobot": "Acrobot-v1", "swimmer": "Swimmer-v5"}[case]
+env = {"sleepy": sleepy, "acrobot": "Acrobot-v1", "swimmer": "Swimmer-v5",
+       "mountaincar": "MountainCar-v0"}[case]
 kwargs = {} if budget == "default" else {"time_budget": float(budget)}
+if case != "mountaincar":
+    kwargs["native"] = False
 print("call", flush=True)
 try:
-    run = gpfd.evolve(env=env, native=False, threads=2, seed=seed, out=out, verbose=True, **kwargs)
+    run = gpfd.evolve(env=env, threads=2, seed=seed, out=out, verbose=True, **kwargs)
     print("finished", run.finished, flush=True)
 except gpfd.InputError as e:
     print("refused:", e, flush=True)
@@ -43,7 +47,7 @@ except gpfd.InputError as e:
 
 def main() -> int:
     parser = argparse.ArgumentParser()
-    parser.add_argument("case", choices=["sleepy", "acrobot", "swimmer"])
+    parser.add_argument("case", choices=["sleepy", "acrobot", "swimmer", "mountaincar"])
     parser.add_argument("budget")
     parser.add_argument("--out", default="/tmp/budget-call")
     parser.add_argument("--seed", type=int, default=1)
