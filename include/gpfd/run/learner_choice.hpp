@@ -120,7 +120,9 @@ LearnerChoice chooseLearnerSettings(
 ExperimentConfig withLearnerChoice(ExperimentConfig config, const LearnerChoice& choice);
 
 // What was tried and chosen: one line of text (with the seconds it took), and JSON (run.json's
-// "learner_choice": no timing, so that a run's files are the same bytes on any machine).
+// "learner_choice": no timing, so that a run's files are the same bytes on any machine; only
+// where a budget cut it, the predicted first training's seconds, as run.json's "time_budget"
+// holds the measured costs).
 std::string learnerChoiceText(const LearnerChoice& choice);
 std::string learnerChoiceJson(const LearnerChoice& choice);
 // Why a choice where nothing learns stops the run, and what to change.
