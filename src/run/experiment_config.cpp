@@ -51,6 +51,7 @@ void visit(V& v, ExperimentConfig& c) {
   v.params("learner.params", c.learnerParams);
   v.choices("learner", c.learnerChoices, c.learnerAlternatives, c.choiceSeeds, c.choiceSignificance,
             c.choiceRandomSets);
+  v.alternatives("learner", "choose_fallback", c.learnerFallbacks);
   v.integer("fitness", "trials", c.trials, 1, 1000);
   v.integer("fitness", "max_trials", c.maxTrials, 0, 100000);
   v.real("fitness", "reevaluation_share", c.reevaluationShare, 0.0, 1.0);
@@ -224,6 +225,14 @@ struct Reader {
       out[key] = values;
     }
   }
+  // An array of tables, each a learner's settings (learner.choose_fallback); [] for none.
+  void alternatives(const char* s, const char* k,
+                    std::vector<std::map<std::string, std::string>>& out) {
+    const toml::node* n = node(s, k);
+    if (n == nullptr) return;
+    require(n->is_array(), dotted(s, k) + " must be an array of tables", r.where(s, k));
+    r.readParamsArray(s, k, out);
+  }
   void measure(const char* s, const char* k, TrialMeasure& out) {
     std::string name = measureName(out);
     r.read(s, k, name, kMeasures);
@@ -281,6 +290,11 @@ struct Writer {
     w.write(s, "choose_seeds", static_cast<std::int64_t>(seeds));
     if (significance > 0.0) w.write(s, "choose_significance", significance);
     if (randomSets > 0) w.write(s, "choose_random_sets", static_cast<std::int64_t>(randomSets));
+  }
+  void alternatives(const char* s, const char* k,
+                    std::vector<std::map<std::string, std::string>>& v) {
+    if (!v.empty())
+      w.write(s, k, v);  // Configs without fallbacks (every resolved one) keep their text.
   }
   void measure(const char* s, const char* k, TrialMeasure& v) { w.write(s, k, measureName(v)); }
   void optionalMeasure(const char* s, const char* k, std::optional<TrialMeasure>& v) {
@@ -490,30 +504,38 @@ void validateAt(const ExperimentConfig& c, const Place& place,
   require(c.learnerChoices.empty() || c.learnerAlternatives.empty(),
           "learner.choose is either a table of values per parameter or an array of alternatives",
           place("learner", "choose"));
-  for (std::size_t i = 0; i < c.learnerAlternatives.size(); ++i) {
-    const std::string section = "learner.choose[" + std::to_string(i) + "]";
-    if (candidateLearner(c, c.learnerAlternatives[i]) != c.learner) {
-      validateCandidateLearner(c, c.learnerAlternatives[i], section, *environment, place);
-      continue;
+  const auto checkAlternatives = [&](const std::vector<Params>& listed, const std::string& key) {
+    for (std::size_t i = 0; i < listed.size(); ++i) {
+      const std::string section = "learner." + key + "[" + std::to_string(i) + "]";
+      if (candidateLearner(c, listed[i]) != c.learner) {
+        validateCandidateLearner(c, listed[i], section, *environment, place);
+        continue;
+      }
+      Params alternative = listed[i];
+      alternative.erase(kCandidateLearnerKey);  // The config's own learner, named.
+      requireKnown(alternative, learnerParamNames, "learner " + c.learner, section, place);
+      Params merged = c.learnerParams;
+      for (const auto& [name, value] : alternative) merged[name] = value;
+      makeAt([&] { return learners.make(c.learner, merged); }, c.learner,
+             {{section, &alternative}, {"learner.params", &c.learnerParams}}, place("learner", key),
+             place);
     }
-    Params alternative = c.learnerAlternatives[i];
-    alternative.erase(kCandidateLearnerKey);  // The config's own learner, named.
-    requireKnown(alternative, learnerParamNames, "learner " + c.learner, section, place);
-    Params merged = c.learnerParams;
-    for (const auto& [key, value] : alternative) merged[key] = value;
-    makeAt([&] { return learners.make(c.learner, merged); }, c.learner,
-           {{section, &alternative}, {"learner.params", &c.learnerParams}},
-           place("learner", "choose"), place);
-  }
+  };
+  checkAlternatives(c.learnerAlternatives, "choose");
+  require(c.learnerFallbacks.empty() || choosesLearner(c),
+          "learner.choose_fallback is tried where every candidate of learner.choose learns "
+          "nothing: give learner.choose too",
+          place("learner", "choose_fallback"));
+  checkAlternatives(c.learnerFallbacks, "choose_fallback");
   // The significance test compares the original variables' scores per seed, which the random
   // sets' best quarter may replace.
   require(c.choiceSignificance == 0.0 || c.choiceRandomSets == 0,
           "learner.choose_significance and learner.choose_random_sets cannot both be given",
           place("learner", "choose_random_sets"));
-  const std::size_t combinations = learnerCandidates(c).size();
+  const std::size_t combinations = learnerCandidates(c).size() + c.learnerFallbacks.size();
   require(combinations <= kMaxLearnerChoices,
-          fmt::format("learner.choose lists {} combinations; at most {} (each costs "
-                      "learner.choose_seeds trainings)",
+          fmt::format("learner.choose and learner.choose_fallback list {} combinations; at most {} "
+                      "(each costs learner.choose_seeds trainings)",
                       combinations, kMaxLearnerChoices),
           place("learner", "choose"));
   // The assessment, validation and confirmation budgets, as LearningTask sees them.
@@ -572,13 +594,15 @@ void validateAt(const ExperimentConfig& c, const Place& place,
 void keepChoicesWith(ExperimentConfig& config, const Params& given) {
   std::erase_if(config.learnerChoices,
                 [&](const auto& choice) { return given.contains(choice.first); });
-  const std::size_t alternatives = config.learnerAlternatives.size();
-  std::erase_if(config.learnerAlternatives, [&](const Params& alternative) {
+  // An alternative that sets another value than one given.
+  const auto contradicts = [&](const Params& alternative) {
     return std::any_of(alternative.begin(), alternative.end(), [&](const auto& setting) {
       const auto value = given.find(setting.first);
       return value != given.end() && value->second != setting.second;
     });
-  });
+  };
+  const std::size_t alternatives = config.learnerAlternatives.size();
+  std::erase_if(config.learnerAlternatives, contradicts);
   // A single one left is applied, unless it names another learner: that stays a choice (of one),
   // which withCandidate applies with the budgets matched once the config is checked.
   if (config.learnerAlternatives.size() == 1 && alternatives > 1 &&
@@ -588,6 +612,9 @@ void keepChoicesWith(ExperimentConfig& config, const Params& given) {
     }
     config.learnerAlternatives.clear();
   }
+  // The fallbacks are a choice's: none without one, and none that sets another value given.
+  std::erase_if(config.learnerFallbacks, contradicts);
+  if (!choosesLearner(config)) config.learnerFallbacks.clear();
 }
 
 namespace {

@@ -50,7 +50,7 @@ std::string candidateText(const LearnerChoice& choice, std::size_t c) {
 // (the paired t-test over the same seeds, one-sided p >= choose_significance); the best if none.
 std::size_t earliestNotWorse(const LearnerChoice& choice, const ExperimentConfig& config) {
   const std::vector<double>& best = choice.scores[choice.chosen];
-  for (std::size_t c = 0; c < choice.chosen; ++c) {
+  for (std::size_t c = choice.fallbacksFrom; c < choice.chosen; ++c) {
     if (!std::isfinite(choice.means[c])) continue;
     const PairedComparison paired = comparePaired(best, choice.scores[c]);
     const double oneSided = paired.meanDifference > 0.0 ? paired.p / 2.0 : 1.0 - paired.p / 2.0;
@@ -193,6 +193,7 @@ std::int64_t trainingEpisodes(const std::string& learner, const Params& params) 
 ExperimentConfig withCandidate(ExperimentConfig config, const Params& candidate) {
   config.learnerChoices.clear();
   config.learnerAlternatives.clear();
+  config.learnerFallbacks.clear();
   const std::string learner = candidateLearner(config, candidate);
   Params own = candidate;
   own.erase(kCandidateLearnerKey);
@@ -277,9 +278,13 @@ LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner&
   };
   LearnerChoice choice;
   choice.candidates = learnerCandidates(config);
-  choice.otherLearners = std::any_of(
-      choice.candidates.begin(), choice.candidates.end(),
-      [&](const auto& candidate) { return candidateLearner(config, candidate) != config.learner; });
+  const auto namesOtherLearners = [&] {
+    return std::any_of(choice.candidates.begin(), choice.candidates.end(), [&](const auto& c) {
+      return candidateLearner(config, c) != config.learner;
+    });
+  };
+  choice.otherLearners = namesOtherLearners();
+  const std::size_t listed = choice.candidates.size();
   choice.seeds = config.choiceSeeds;
   choice.randomSets = config.choiceRandomSets;
   std::vector<std::uint64_t> seeds;
@@ -379,8 +384,23 @@ LearnerChoice chooseLearnerSettings(const ExperimentConfig& config, TrialRunner&
       choice.candidates.resize(1);
       break;
     }
+    // Every listed candidate tried and none learns: the fallbacks, where they fit the allowance
+    // at the listed ones' cost each (they train as many episodes).
+    if (c + 1 == listed && !config.learnerFallbacks.empty() &&
+        choice.cut == LearnerChoice::Cut::None && noCandidateLearns(choice)) {
+      const auto fallbacks = static_cast<double>(config.learnerFallbacks.size());
+      if (elapsed() * (1.0 + fallbacks / static_cast<double>(listed)) > allowance) {
+        choice.fallbacksCut = true;
+      } else {
+        choice.fallbacksFrom = listed;
+        choice.candidates.insert(choice.candidates.end(), config.learnerFallbacks.begin(),
+                                 config.learnerFallbacks.end());
+        choice.otherLearners = namesOtherLearners();
+      }
+    }
   }
-  for (std::size_t c = 1; c < choice.merits.size(); ++c) {
+  choice.chosen = choice.fallbacksFrom;
+  for (std::size_t c = choice.chosen + 1; c < choice.merits.size(); ++c) {
     if (choice.merits[c] > choice.merits[choice.chosen]) choice.chosen = c;
   }
   if (config.choiceSignificance > 0.0) choice.chosen = earliestNotWorse(choice, config);
@@ -440,7 +460,10 @@ std::string learnerChoiceText(const LearnerChoice& choice) {
                            choice.randomSets, kRandomSetSeeds)
              : std::string(),
       choice.confirmation ? "confirmation" : "validation", fmt::join(tried, "; "), choice.seconds,
-      cut);
+      choice.fallbacksFrom > 0 ? std::string("; none of the listed settings learns here, so the "
+                                             "choice is among learner.choose_fallback's") +
+                                     cut
+                               : cut);
 }
 
 std::string learnerChoiceJson(const LearnerChoice& choice) {
@@ -468,6 +491,8 @@ std::string learnerChoiceJson(const LearnerChoice& choice) {
                               {"chosen", choice.candidates.at(choice.chosen)},
                               {"nothing_learns", choice.nothingLearns}};
   if (choice.otherLearners) json["learner"] = choice.learners.at(choice.chosen);
+  // Only where fallbacks were tried, likewise.
+  if (choice.fallbacksFrom > 0) json["fallback_from"] = choice.fallbacksFrom;
   // Only where the time budget cut the choice, so that a whole choice keeps its bytes.
   if (choice.cut == LearnerChoice::Cut::RandomSets) json["cut"] = "random sets";
   if (choice.cut == LearnerChoice::Cut::Candidates) json["cut"] = "candidates";
@@ -485,13 +510,16 @@ std::string nothingLearnsText(const LearnerChoice& choice) {
       "at these settings: give it more to learn from (learner.params: more updates or episodes "
       "per update; other learner.choose alternatives), a longer episode or a reward that grades "
       "progress (a sparse reward such as MountainCar-v0's is reached only by exploring), or "
-      "another learner (learner.name)",
+      "another learner (learner.name){}",
       choice.means[c],
       choice.randomSetsBest.empty()
           ? std::string()
           : fmt::format(" and the best quarter of {} random feature sets ({:.4g})",
                         choice.randomSets, choice.randomSetsBest[c]),
-      choice.noLearningMeans[c], choice.seeds);
+      choice.noLearningMeans[c], choice.seeds,
+      choice.fallbacksCut ? "; learner.choose_fallback was not tried: it would pass the time "
+                            "budget's share for the choice (give a longer budget)"
+                          : "");
 }
 
 }  // namespace gpfd::run

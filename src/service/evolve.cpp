@@ -95,7 +95,9 @@ std::optional<run::ExperimentConfig> expectedConfig(const EvolveRequest& request
   const std::string stored = dir + "/config.toml";
   if (!fs::exists(stored)) return expected;
   const auto chosen = run::loadStoredExperimentConfig(stored);
-  const auto candidates = run::learnerCandidates(expected);
+  auto candidates = run::learnerCandidates(expected);
+  candidates.insert(candidates.end(), expected.learnerFallbacks.begin(),
+                    expected.learnerFallbacks.end());
   // Another learner chosen: the first candidate naming it, its budgets matched as the choice
   // matched them.
   const auto other = std::find_if(candidates.begin(), candidates.end(), [&](const auto& c) {
@@ -114,6 +116,7 @@ std::optional<run::ExperimentConfig> expectedConfig(const EvolveRequest& request
   }
   expected.learnerChoices.clear();
   expected.learnerAlternatives.clear();
+  expected.learnerFallbacks.clear();
   if (expected.timeBudget > 0.0) {
     run::BudgetSizes sizes;
     sizes.population = chosen.gp.population;
@@ -167,9 +170,13 @@ run::ExperimentConfig chooseLearner(const run::ExperimentConfig& config, int run
   const double allowance = config.timeBudget > 0.0 ? run::kChoiceShare * config.timeBudget
                                                    : std::numeric_limits<double>::infinity();
   progress.preparing(fmt::format(
-      "choosing the learner's settings on the task: {} alternatives, each training the original "
-      "variables and no learning on {} seeds{}{}",
-      run::learnerCandidates(config).size(), config.choiceSeeds,
+      "choosing the learner's settings on the task: {} alternatives{}, each training the "
+      "original variables and no learning on {} seeds{}{}",
+      run::learnerCandidates(config).size(),
+      config.learnerFallbacks.empty()
+          ? std::string()
+          : fmt::format(" ({} more where none learns)", config.learnerFallbacks.size()),
+      config.choiceSeeds,
       config.choiceRandomSets > 0
           ? fmt::format(" and {} random feature sets on 3", config.choiceRandomSets)
           : std::string(),

@@ -642,3 +642,98 @@ TEST(LearnerChoice, BadCandidateLearnersAreErrorsNamingThem) {
 
 }  // namespace
 }  // namespace gpfd::testing
+
+namespace gpfd::testing {
+namespace {
+
+// pg's natural steps of a KL of 1e-12 learn nothing (the original variables score as no
+// learning); ARS with 2 directions, tried only then (learner.choose_fallback), learns.
+const char* kFrozenPgOnly = "learner.choose=[{ step = \"natural\", kl = 1e-12 }]";
+const char* kArsFallback =
+    "learner.choose_fallback=[{ learner = \"ars\", n_delta = 2, learning_rate = 0.1, "
+    "greedy_last = true }]";
+
+TEST(LearnerChoice, WhereNoListedCandidateLearnsTheFallbackIsTriedAndChosen) {
+  run::ThreadTrialRunner threads(2);
+  const auto frozen = service::loadConfig(choosingConfig(), {kFrozenPgOnly});
+  ASSERT_TRUE(run::chooseLearnerSettings(frozen, threads).nothingLearns);
+  const auto config = service::loadConfig(choosingConfig(), {kFrozenPgOnly, kArsFallback});
+  const auto choice = choiceOnAnyThreads(config);
+  ASSERT_EQ(choice.candidates.size(), 2u);
+  EXPECT_EQ(choice.fallbacksFrom, 1u);
+  EXPECT_EQ(choice.learners, (std::vector<std::string>{"pg", "ars"}));
+  EXPECT_FALSE(choice.nothingLearns);
+  EXPECT_EQ(choice.chosen, 1u);
+  const auto chosen = run::withLearnerChoice(config, choice);
+  EXPECT_EQ(chosen.learner, "ars");
+  EXPECT_TRUE(chosen.learnerFallbacks.empty());
+  const auto json = nlohmann::json::parse(run::learnerChoiceJson(choice));
+  EXPECT_EQ(json.at("fallback_from"), 1);
+  EXPECT_EQ(json.at("learner"), "ars");
+  EXPECT_NE(run::learnerChoiceText(choice).find("among learner.choose_fallback's"),
+            std::string::npos);
+  // A listed candidate that learns: the fallback is not tried, and the choice's JSON is as
+  // without one.
+  const auto learning = service::loadConfig(choosingConfig(), {kArsFallback});
+  const auto plain = run::chooseLearnerSettings(learning, threads);
+  EXPECT_EQ(plain.candidates.size(), 2u);  // rprop small and large.
+  EXPECT_EQ(plain.fallbacksFrom, 0u);
+  EXPECT_EQ(run::learnerChoiceJson(plain),
+            run::learnerChoiceJson(
+                run::chooseLearnerSettings(service::loadConfig(choosingConfig(), {}), threads)));
+  // A fallback that learns nothing either (a learning rate of 0, its zero weights scored): the
+  // run stops as before.
+  const auto still = service::loadConfig(
+      choosingConfig(),
+      {kFrozenPgOnly,
+       "learner.choose_fallback=[{ learner = \"ars\", learning_rate = 0, greedy_last = true }]"});
+  const auto none = run::chooseLearnerSettings(still, threads);
+  EXPECT_EQ(none.fallbacksFrom, 1u);
+  EXPECT_TRUE(none.nothingLearns);
+}
+
+// Where the fallback would pass the allowance, at the listed candidates' cost, it is not tried,
+// and the stop says so.
+TEST(LearnerChoice, AFallbackThatWouldPassTheAllowanceIsNotTried) {
+  const auto config = service::loadConfig(choosingConfig(), {kFrozenPgOnly, kArsFallback});
+  SlowTrialRunner slow(2, 8);  // The one-update and first trainings fast, then 1 s each.
+  // The listed candidate: its pairs (1 s more) within 1.5 s; twice that passes it.
+  const auto choice = run::chooseLearnerSettings(config, slow, 1.5, 1);
+  EXPECT_EQ(choice.cut, run::LearnerChoice::Cut::None);
+  EXPECT_TRUE(choice.fallbacksCut);
+  EXPECT_EQ(choice.fallbacksFrom, 0u);
+  EXPECT_TRUE(choice.nothingLearns);
+  EXPECT_NE(run::nothingLearnsText(choice).find("learner.choose_fallback was not tried"),
+            std::string::npos);
+}
+
+TEST(LearnerChoice, BadFallbacksAreErrorsThatNameThem) {
+  const auto refused = [](const std::vector<std::string>& overrides) {
+    try {
+      service::loadConfig(choosingConfig(), overrides);
+    } catch (const InputError& e) {
+      return std::string(e.what()) + " @ " + e.where();
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(
+      refused({"learner.choose_fallback=[{ learner = \"arz\" }]"}).find("unknown learner 'arz'"),
+      std::string::npos);
+  EXPECT_NE(refused({"learner.choose_fallback=[{ learner = \"ars\", n_delt = 2 }]"})
+                .find("learner.choose_fallback[0]"),
+            std::string::npos);
+  EXPECT_NE(refused({"learner.choose_fallback={ learner = \"ars\" }"})
+                .find("learner.choose_fallback must be an array of tables"),
+            std::string::npos);
+  // A value given over the choice leaves no choice, and so no fallback.
+  const auto given =
+      service::loadConfig(choosingConfig(), {"learner.choose={ rprop = \"small\" }", kArsFallback});
+  EXPECT_EQ(given.learnerFallbacks.size(), 1u);
+  const auto none =
+      service::loadConfig(choosingConfig(), {"learner.params.rprop=small", kArsFallback});
+  EXPECT_FALSE(run::choosesLearner(none));
+  EXPECT_TRUE(none.learnerFallbacks.empty());
+}
+
+}  // namespace
+}  // namespace gpfd::testing

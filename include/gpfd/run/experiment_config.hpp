@@ -55,6 +55,11 @@ struct ExperimentConfig {
   // array of tables, e.g. [{ step = "natural", updates = 30 }, { rprop = "large" }]), chosen the
   // same way. At most one of the two is given.
   std::vector<std::map<std::string, std::string>> learnerAlternatives;
+  // Alternatives tried only where every candidate of learner.choose learns nothing (the original
+  // variables and the random sets score as no learning does: MountainCar-v0 under policy
+  // gradient), chosen among themselves the same way (`learner.choose_fallback`, user-env's ARS).
+  // Needs learner.choose; resolved configs keep none.
+  std::vector<std::map<std::string, std::string>> learnerFallbacks;
   int choiceSeeds = 10;
   // 0: the candidate with the best mean is chosen. Above 0: an earlier-listed candidate is kept
   // unless the best trains the original variables significantly better on the same seeds (the

@@ -12,8 +12,10 @@
 // learner's settings chosen on the task"). The choice is a pure function of the config and its
 // seed; where no candidate makes the original variables or the random sets score other than the
 // no-learning reference (trained beside them on the same seeds), the run stops before GP with
-// what to change (nothingLearnsText); the resolved config stores the values chosen and no choice,
-// so a resume, or that config run again, gives the same run.
+// what to change (nothingLearnsText), unless learner.choose_fallback lists candidates to try then
+// (user-env's ARS): the choice is made among those, and stops only where none of them learns
+// either; the resolved config stores the values chosen and no choice, so a resume, or that config
+// run again, gives the same run.
 #pragma once
 
 #include <cstdint>
@@ -66,7 +68,8 @@ bool choosesLearner(const ExperimentConfig& config);
 std::vector<std::map<std::string, std::string>> learnerCandidates(const ExperimentConfig& config);
 
 struct LearnerChoice {
-  std::vector<std::map<std::string, std::string>> candidates;  // learnerCandidates(config).
+  // learnerCandidates(config), then the fallbacks where tried (from fallbacksFrom on).
+  std::vector<std::map<std::string, std::string>> candidates;
   std::vector<double> means;  // The original variables' mean score with each (-inf: diverged).
   std::vector<std::vector<double>> scores;  // Each one's score per seed.
   // With learner.choose_random_sets: each one's mean of its best quarter of the random sets.
@@ -77,6 +80,11 @@ struct LearnerChoice {
   // no-learning mean (to 1e-6 of their scale): the learner learns nothing here
   // (nothingLearnsText).
   bool nothingLearns = false;
+  // Above 0 where no listed candidate learns and learner.choose_fallback's were tried: the index
+  // of the first, and the choice is made among them.
+  std::size_t fallbacksFrom = 0;
+  // No listed candidate learns, and the fallbacks were not tried: they would pass the allowance.
+  bool fallbacksCut = false;
   int randomSets = 0;
   // The best mean, the first listed of equal ones; with learner.choose_significance, the first
   // listed that the best does not beat significantly.
