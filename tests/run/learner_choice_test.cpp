@@ -47,6 +47,7 @@ confirm_params = { updates = 8 }
 
 class Said final : public service::EvolveProgress {
  public:
+  void preparing(const std::string& text) override { said += text; }
   void preparedRun(const std::string& text) override { said += text; }
   std::string said;
 };
@@ -690,6 +691,29 @@ TEST(LearnerChoice, WhereNoListedCandidateLearnsTheFallbackIsTriedAndChosen) {
   const auto none = run::chooseLearnerSettings(still, threads);
   EXPECT_EQ(none.fallbacksFrom, 1u);
   EXPECT_TRUE(none.nothingLearns);
+}
+
+// A run that fell back writes the fallback's learner into config.toml and run.json, and resumes
+// against the config that chose it.
+TEST(LearnerChoice, ARunThatFellBackWritesItAndResumes) {
+  const auto dir = freshDir("choose-fallback-run");
+  auto text = readText(choosingConfig());
+  const std::string choose = "choose = { rprop = [\"small\", \"large\"] }";
+  ASSERT_NE(text.find(choose), std::string::npos);
+  text.replace(text.find(choose), choose.size(),
+               std::string(kFrozenPgOnly).substr(8) + "\n" + std::string(kArsFallback).substr(8));
+  service::EvolveRequest request;
+  request.config = writeText("choose-fallback.toml", text);
+  request.out = {dir, false, "--out"};
+  request.threads = 2;
+  Said progress;
+  const std::atomic<bool> go{false};
+  ASSERT_TRUE(service::evolve(request, progress, go).finished);
+  EXPECT_EQ(run::loadExperimentConfig(dir + "/config.toml").learner, "ars");
+  const auto runJson = nlohmann::json::parse(readText(dir + "/run.json"));
+  EXPECT_EQ(runJson.at("learner_choice").at("fallback_from"), 1);
+  EXPECT_NE(progress.said.find("(1 more where none learns)"), std::string::npos) << progress.said;
+  EXPECT_TRUE(resumeFinishes(dir, request.config));
 }
 
 // Where the fallback would pass the allowance, at the listed candidates' cost, it is not tried,
