@@ -227,6 +227,7 @@ def zoo_rows(top):
         r["wilcoxon_p"] = float(r["wilcoxon_p"]) if r["wilcoxon_p"] else ""
         for key in ("above_raw", "below_raw", "seeds", "steps", "zoo_steps"):
             r[key] = int(r[key]) if r[key] else ""
+        r["first_seed"] = int(r.get("first_seed") or 1)  # A column only where it is not 1.
     return rows
 
 
@@ -237,14 +238,16 @@ def test_every_zoo_check_is_found():
 @pytest.mark.parametrize("top", ZOO_CHECKS, ids=lambda p: p.relative_to(RESULTS).as_posix())
 def test_a_zoo_summary_is_its_scores(top):
     """Every row's mean, sd, paired Wilcoxon p and counts, computed again from scores.csv (the
-    training seeds 1..N at the row's steps; the last score of a key, as the script reads them),
+    training seeds 1..N at the row's steps, or first_seed on where the row says; the last score of
+    a key, as the script reads them),
     and README-table.md as the script writes it from those rows."""
     zoo = script_module("zoo-check")
     scores = zoo.read_scores(top / "scores.csv")
     rows = zoo_rows(top)
     assert rows
     for r in rows:
-        seeds = range(1, r["seeds"] + 1)
+        first = r["first_seed"]
+        seeds = range(first, first + r["seeds"])
         values = [scores[(r["task"], r["observation"], s, r["steps"])] for s in seeds]
         raw = [scores[(r["task"], "raw", s, r["steps"])] for s in seeds]
         where = f"{r['task']} {r['configuration']}"

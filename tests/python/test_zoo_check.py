@@ -88,3 +88,13 @@ def test_a_tiny_run_on_cartpole(tmp_path):
     again = zoo.main(tiny)
     assert again == rows
     assert len((tmp_path / "scores.csv").read_text().splitlines()) == 7
+
+
+def test_fresh_seeds_start_at_the_first_seed(tmp_path):
+    fresh = ["--sets", str(STUDY), "--tasks", "CartPole-v1", "--seeds", "2", "--first-seed", "3"]
+    fresh += ["--fraction", "0.0075", "--max-sets", "1", "--alone-only", "--out", str(tmp_path)]
+    rows = zoo.main(fresh)
+    assert [r["configuration"] for r in rows] == ["raw", "set 1 alone"]
+    with open(tmp_path / "scores.csv", newline="") as f:
+        assert sorted({int(s["seed"]) for s in csv.DictReader(f)}) == [3, 4]
+    assert "2 training seeds (3 to 4);" in (tmp_path / "README-table.md").read_text()

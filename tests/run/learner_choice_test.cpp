@@ -63,6 +63,20 @@ bool resumeFinishes(const std::string& dir, const std::string& config) {
   return service::evolve(resume, quiet, go).finished;
 }
 
+// A run of choosingConfig() written to `file` with `choose` (TOML lines) in place of its
+// learner.choose, on 2 threads into `dir`: a resume reads the config as it is in the file.
+service::EvolveRequest choosingRun(const std::string& file, const std::string& choose,
+                                   const std::string& dir) {
+  auto text = readText(choosingConfig());
+  const std::string listed = "choose = { rprop = [\"small\", \"large\"] }";
+  text.replace(text.find(listed), listed.size(), choose);
+  service::EvolveRequest request;
+  request.config = writeText(file, text);
+  request.out = {dir, false, "--out"};
+  request.threads = 2;
+  return request;
+}
+
 TEST(LearnerChoice, CandidatesAreEveryCombinationInOrder) {
   auto config = service::loadConfig(choosingConfig(), {"learner.choose.episodes=[3, 5]"});
   const auto candidates = run::learnerCandidates(config);
@@ -581,15 +595,8 @@ TEST(LearnerChoice, ALearnerThatTrainsBetterIsChosenAndNamed) {
 
 TEST(LearnerChoice, ARunWithAnotherLearnerChosenWritesItAndResumes) {
   const auto dir = freshDir("choose-ars-run");
-  service::EvolveRequest request;
   // choosingConfig() with kArsAlternative in the file: a resume reads the config as it is.
-  auto text = readText(choosingConfig());
-  const std::string choose = "choose = { rprop = [\"small\", \"large\"] }";
-  ASSERT_NE(text.find(choose), std::string::npos);
-  text.replace(text.find(choose), choose.size(), std::string(kArsAlternative).substr(8));
-  request.config = writeText("choose-ars.toml", text);
-  request.out = {dir, false, "--out"};
-  request.threads = 2;
+  const auto request = choosingRun("choose-ars.toml", std::string(kArsAlternative).substr(8), dir);
   Said progress;
   const std::atomic<bool> go{false};
   ASSERT_TRUE(service::evolve(request, progress, go).finished);
@@ -697,15 +704,9 @@ TEST(LearnerChoice, WhereNoListedCandidateLearnsTheFallbackIsTriedAndChosen) {
 // against the config that chose it.
 TEST(LearnerChoice, ARunThatFellBackWritesItAndResumes) {
   const auto dir = freshDir("choose-fallback-run");
-  auto text = readText(choosingConfig());
-  const std::string choose = "choose = { rprop = [\"small\", \"large\"] }";
-  ASSERT_NE(text.find(choose), std::string::npos);
-  text.replace(text.find(choose), choose.size(),
-               std::string(kFrozenPgOnly).substr(8) + "\n" + std::string(kArsFallback).substr(8));
-  service::EvolveRequest request;
-  request.config = writeText("choose-fallback.toml", text);
-  request.out = {dir, false, "--out"};
-  request.threads = 2;
+  const auto request = choosingRun(
+      "choose-fallback.toml",
+      std::string(kFrozenPgOnly).substr(8) + "\n" + std::string(kArsFallback).substr(8), dir);
   Said progress;
   const std::atomic<bool> go{false};
   ASSERT_TRUE(service::evolve(request, progress, go).finished);
