@@ -208,6 +208,34 @@ def test_an_error_names_the_first_texts_told_and_counts_the_rest():
     assert _expired.named(texts) == "step 0; step 1; step 2; and 2 more"
 
 
+def test_dasks_text_is_its_tasks_else_the_last_told_in_the_round():
+    """Dask gives up a task queued on workers that other tasks' deadlines ended (a death counts
+    against every task processing on the worker): no worker ran it, so the text is the last told
+    since the round began; an earlier round's is never taken."""
+
+    class Events:
+        def __init__(self, events):
+            self.events = events
+
+        def get_events(self, topic):
+            assert topic == _expired.TOPIC
+            return self.events
+
+    class Executor:
+        def __init__(self, events):
+            self._client = Events(events)
+
+    told = [
+        (90.0, {"task": "old", "text": "an earlier round's"}),
+        (101.0, {"task": "a", "text": "a's step"}),
+        (102.0, {"task": "b", "text": "b's step"}),
+    ]
+    assert _expired.dask_text(Executor(told), "a", since=100.0) == "a's step"
+    assert _expired.dask_text(Executor(told), "queued", since=100.0) == "b's step"
+    assert _expired.dask_text(Executor(told[:1]), "queued", since=100.0) is None
+    assert _expired.dask_text(Executor(told), None, since=100.0) is None
+
+
 def test_a_process_that_is_no_dask_worker_has_no_one_to_tell():
     pytest.importorskip("distributed")  # Imported: get_worker() is asked, and finds none.
     assert _expired.teller() is None

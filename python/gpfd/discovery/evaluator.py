@@ -17,6 +17,7 @@ workers give the same run.
 from __future__ import annotations
 
 import os
+import time
 from collections.abc import Callable, Iterator
 from concurrent.futures import BrokenExecutor, CancelledError, Executor
 from typing import Any
@@ -158,6 +159,7 @@ class Evaluator:
         resume= continues (`expiry`: the task_timeout, which a Dask error names, with where its
         task was as the last worker its deadline ended told: gpfd.execution._expired)."""
         self._busy = True
+        started = time.time()  # Dask's events are stamped by the scheduler's time.time().
         try:
             yield from results
         except WorkerError as e:  # gpfd's pool: a task that lost its workers (or a timeout's).
@@ -187,8 +189,8 @@ class Evaluator:
                 raise
             ended = ""
             if expiry is not None:
-                told = _expired.dask_text(self._executor, getattr(e, "task", None))
-                said = f"the last one it ended said: {told}"
+                told = _expired.dask_text(self._executor, getattr(e, "task", None), started)
+                said = f"the last worker it ended said: {told}"
                 if not told:
                     said = "its stderr names the environment's step"
                 ended = f", each ended by task_timeout={expiry:g} s if it ran past it ({said})"

@@ -4,7 +4,9 @@ has its pipe, gpfd.execution._worker; Ray its key-value store, gpfd.execution.ra
 
 - Dask: the worker logs the text as an event on the scheduler (topic TOPIC, with the key of its
   task) and has the scheduler's answer before it exits; the driver reads back the events of the
-  task that Dask gave up (``dask_text``, the key of the KilledWorker).
+  task that Dask gave up (``dask_text``, the key of the KilledWorker), or, where that task never
+  ran on a worker that its deadline ended (Dask counts a death against every task queued on the
+  worker too), the last event logged since the round began.
 - mpi4py's pool, where its master is the one rank of the workers' COMM_WORLD that is no worker
   (``python -m mpi4py.futures``; MPICommExecutor on COMM_WORLD): the rank sends the text to the
   master on COMM_WORLD, tag TAG, synchronously (an Issend completes once the master's receive has
@@ -73,10 +75,11 @@ def _dask_teller() -> Callable[[str], None] | None:
     return tell
 
 
-def dask_text(executor: Any, task: Any) -> str | None:
+def dask_text(executor: Any, task: Any, since: float = 0.0) -> str | None:
     """What the last worker that its deadline ended told while running the Dask task `task` (a
-    key: KilledWorker's), where `executor` is a Dask client's (``client.get_executor()``); None
-    where none told."""
+    key: KilledWorker's), else the last that any told at or after `since` (the round's start, in
+    time.time()'s seconds, as the scheduler stamps its events), where `executor` is a Dask
+    client's (``client.get_executor()``); None where none told."""
     client = getattr(executor, "_client", None)
     if client is None or task is None:
         return None
@@ -84,11 +87,10 @@ def dask_text(executor: Any, task: Any) -> str | None:
         events = client.get_events(TOPIC)
     except Exception:  # No scheduler to ask: nothing told.
         return None
-    texts = [
-        message["text"]
-        for _, message in events
-        if isinstance(message, dict) and message.get("task") == str(task)
-    ]
+    told = [(stamp, m) for stamp, m in events if isinstance(m, dict) and "text" in m]
+    own = [m["text"] for _, m in told if m.get("task") == str(task)]
+    recent = [m["text"] for stamp, m in told if stamp >= since]
+    texts = own or recent
     return texts[-1] if texts else None
 
 
