@@ -28,6 +28,19 @@ def _same_reward(ours: float, theirs: float, what: str) -> None:
     assert (math.isnan(ours) and math.isnan(theirs)) or ours == theirs, (what, ours, theirs)
 
 
+def _gymnasiums_torque_square_is_inexact(task: str, action: Any) -> bool:
+    """Whether Gymnasium's Pendulum-v1 squares this action's torque other than correctly rounded:
+    under NumPy 1.x a float32 torque's `u**2` goes through the float64 `np.power` ufunc, which on
+    CPUs with AVX-512 is SVML's vectorised pow (within 1 ulp), about twice in 100,000 steps; the
+    twin gives the correctly rounded square there, as NumPy does elsewhere (docs/twins.md)."""
+    if task != "Pendulum-v1":
+        return False
+    u = np.clip(np.asarray(action), -2.0, 2.0)[0]
+    square = u**2  # As Gymnasium computes it, in the type NumPy's rules give.
+    exact = u.astype(square.dtype) * u.astype(square.dtype)  # Correctly rounded in that type.
+    return not math.isnan(float(u)) and bool(square != exact)
+
+
 def _actions(env: gym.Env, rng: np.random.Generator, adversarial: bool) -> Any:
     """A random action of the space; with `adversarial`, often a limit, and for continuous
     spaces values beyond the bounds, huge ones and NaN, as float32 or float64 arrays or lists."""
@@ -53,6 +66,7 @@ def _play(task: str, seeds: range, steps: int, adversarial: bool, **make: Any) -
     """(steps played, the longest episode's length)."""
     ours, theirs = gym.make(f"gpfd/{task}", **make), gym.make(task, **make)
     rng = np.random.default_rng(len(seeds) + steps)
+    theirs.action_space.seed(len(seeds) + steps)  # space.sample()'s actions, the same each run.
     played = longest = 0
     for seed in seeds:
         for s in (seed, None):  # A seeded reset, then one that continues the stream.
@@ -68,7 +82,13 @@ def _play(task: str, seeds: range, steps: int, adversarial: bool, **make: Any) -
                 their_obs, their_reward, t2, tr2, _ = theirs.step(action)
                 what = f"{task} seed {seed} step {played} action {action!r}"
                 _same(obs, their_obs, what)
-                _same_reward(float(reward), float(their_reward), what)
+                one_ulp = _gymnasiums_torque_square_is_inexact(task, action) and math.isfinite(
+                    their_reward
+                )
+                if one_ulp:
+                    assert abs(float(reward) - float(their_reward)) <= math.ulp(their_reward), what
+                else:
+                    _same_reward(float(reward), float(their_reward), what)
                 assert (terminated, truncated) == (t2, tr2), what
                 played += 1
                 if terminated or truncated:
