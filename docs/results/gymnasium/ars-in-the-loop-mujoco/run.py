@@ -3,10 +3,11 @@ the smoke scale the README gives. Usage, from the repository root with the mujoc
 
     .venv/bin/python docs/results/gymnasium/ars-in-the-loop-mujoco/run.py TASK SEED WORK
 
-The run's directory is WORK/TASK/run-SEED; the last line printed is "TASK,SEED,SECONDS" (the
-run's wall seconds; runs.csv's rows were written from the run's verdict and best.features)."""
+The run's directory is WORK/TASK/run-SEED (a new one: gpfd refuses one that holds files); the
+last line printed is "TASK,SEED,SECONDS" (the run's wall seconds; runs.csv's rows were written
+from the run's verdict and best.features)."""
 
-import sys
+import argparse
 import time
 from pathlib import Path
 
@@ -27,18 +28,23 @@ SETTINGS = {
     "validation.confirm_params": {"updates": 12},
 }
 
-task, seed, work = sys.argv[1], int(sys.argv[2]), Path(sys.argv[3])
+parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+parser.add_argument("task", choices=("Swimmer-v5", "Hopper-v5"))
+parser.add_argument("seed", type=int)
+parser.add_argument("work", type=Path)
+args = parser.parse_args()
+if args.seed < 0:
+    parser.error(f"seed {args.seed}: must be at least 0")
 start = time.monotonic()
-run = gpfd.evolve(
-    config="configs/user-env-ars.toml",
-    env=task,
-    seed=seed,
+gpfd.evolve(
+    config="user-env-ars",
+    env=args.task,
+    seed=args.seed,
     population=6,
     generations=2,
     threads=1,
     set=SETTINGS,
-    out=str(work / task / f"run-{seed}"),
-    force=True,
+    out=str(args.work / args.task / f"run-{args.seed}"),
     verbose=True,
 )
-print(f"{task},{seed},{time.monotonic() - start:.1f}")
+print(f"{args.task},{args.seed},{time.monotonic() - start:.1f}")

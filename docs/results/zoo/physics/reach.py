@@ -12,37 +12,45 @@ Python. Usage, from the repository root (the package installed, .venv):
 
     .venv/bin/python docs/results/zoo/physics/reach.py TASK [SET] [--sets DIR] [--seed 1]
 
-SET: a run number of DIR/runs.csv's rows for TASK (default DIR: this study's sets), or "raw".
-Appends a row to docs/results/zoo/physics/reach.csv and prints it."""
+TASK: one of scripts/zoo-check's tasks. SET: a run number of DIR/runs.csv's rows for TASK
+(default DIR: this study's sets, read as zoo-check reads a study's rows), or "raw". Appends a row
+to docs/results/zoo/physics/reach.csv and prints it."""
 
 import argparse
 import csv
+import importlib.machinery
+import importlib.util
 import time
 from pathlib import Path
 
 import gymnasium as gym
 import numpy as np
 
-import gpfd
-
 HERE = Path(__file__).resolve().parent
+ZOO_CHECK = HERE.parents[3] / "scripts" / "zoo-check"
 SELECT_SEED, REPORT_SEED = 1_000_000, 2_000_000
 POPULATION, ELITE, ITERATIONS = 24, 6, 25
 # The first weights' sd, on standardised features: fine control (1) and bang-bang (10).
 FIRST_SPREADS = (1.0, 10.0)
 
 
-def feature_set(task, run, sets_dir, dim):
+def zoo_check():
+    """scripts/zoo-check as a module: its tasks and its reading of a study's sets."""
+    loader = importlib.machinery.SourceFileLoader("zoo_check", str(ZOO_CHECK))
+    module = importlib.util.module_from_spec(importlib.util.spec_from_loader(loader.name, loader))
+    loader.exec_module(module)
+    return module
+
+
+def feature_set(zoo, task, run, sets_dir, parser):
     """(text, function of one observation) of the raw observation or a run's set."""
     if run == "raw":
         return "the observation", lambda obs: np.asarray(obs, dtype=float)
-    with open(Path(sets_dir) / "runs.csv", newline="") as f:
-        rows = [r for r in csv.DictReader(f) if r["task"] == task and r["run"] == run]
-    if not rows:
-        raise SystemExit(f"reach: {sets_dir}/runs.csv has no run {run} of {task}")
-    text = rows[0]["expressions"]
-    names = [f"x{i}" for i in range(dim)]
-    features = gpfd.FeatureSet.parse(text.replace(" ; ", "\n"), variables=names)
+    sets = dict(zoo.committed_sets(sets_dir, task))
+    if not run.isdigit() or int(run) not in sets:
+        parser.error(f'SET {run!r}: not "raw" nor a run of {task} in {sets_dir}/runs.csv')
+    features = sets[int(run)]
+    text = " ; ".join(zoo.expressions(features))
     return text, lambda obs: np.asarray(features(np.asarray(obs, dtype=float)), dtype=float)
 
 
@@ -78,14 +86,12 @@ def policy(env, features, mean, sd, weights):
     """The linear policy of weights (actions x features + 1, the last column the bias)."""
     space = env.action_space
 
-    def act(obs):
-        z = np.append((features(obs) - mean) / sd, 1.0)
-        scores = weights @ z
-        if isinstance(space, gym.spaces.Discrete):
-            return int(np.argmax(scores))
-        return np.clip(scores, space.low, space.high).astype(space.dtype)
+    def scores(obs):
+        return weights @ np.append((features(obs) - mean) / sd, 1.0)
 
-    return act
+    if isinstance(space, gym.spaces.Discrete):
+        return lambda obs: int(np.argmax(scores(obs)))
+    return lambda obs: np.clip(scores(obs), space.low, space.high).astype(space.dtype)
 
 
 def main():
@@ -95,10 +101,11 @@ def main():
     parser.add_argument("--sets", default=str(HERE / "sets"))
     parser.add_argument("--seed", type=int, default=1)
     args = parser.parse_args()
+    zoo = zoo_check()
+    zoo.check_task(args.task, parser)
     start = time.monotonic()
     env = gym.make(args.task)
-    (dim,) = env.observation_space.shape
-    text, features = feature_set(args.task, args.set, args.sets, dim)
+    text, features = feature_set(zoo, args.task, args.set, args.sets, parser)
     mean, sd = standardiser(env, features, 3_000_000)
     space = env.action_space
     actions = space.n if isinstance(space, gym.spaces.Discrete) else space.shape[0]
