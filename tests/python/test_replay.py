@@ -71,12 +71,12 @@ def assert_same_run(original: Path, replayed: Path) -> None:
 
 
 def test_a_budgeted_user_env_run_replays_on_one_thread(cli, tmp_path):
-    """user-env on CartPole-v1 (its twin), sized by a 15 s budget on 2 threads, then replayed by
+    """user-env on CartPole-v1 (its twin), sized by a 6 s budget on 2 threads, then replayed by
     the command line on 1."""
     sets = [f"--set={key}={value}" for key, value in SMALL.items()]
     args = ["evolve", "user-env", "--env", "CartPole-v1", "--seed", "3", "--threads", "2"]
     first = subprocess.run(
-        [cli, *args, "--time-budget", "15", "--out", str(tmp_path / "run"), *sets],
+        [cli, *args, "--time-budget", "6", "--out", str(tmp_path / "run"), *sets],
         capture_output=True,
         text=True,
         check=True,

@@ -23,7 +23,7 @@ from point_env import Point
 from test_executors import process_pool
 from test_user_env_workers import SMALL, run_files
 
-TIMEOUT = 10  # Seconds: a task of these runs takes milliseconds, also on a loaded machine.
+TIMEOUT = 4  # Seconds: a task of these runs takes milliseconds, also on a loaded machine.
 COMMON: dict[str, Any] = {"seed": 5, "population": 6, "generations": 3, "set": SMALL}
 
 

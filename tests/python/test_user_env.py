@@ -55,18 +55,19 @@ def test_a_gymnasium_id_evolves_for_two_generations_in_worker_processes(tmp_path
 
 
 class PidRecorder(gym.Wrapper):
-    """Pendulum that notes which process made it. In a worker, the first instance waits (20 s at
+    """Pendulum that notes which process made it. In a worker, the first instance waits (5 s at
     most) until a second worker has made one too, so that the test does not depend on how fast
     the workers start: one worker alone could otherwise take every task of a short generation.
     Once per process: a run's phases of one task (the learner choice's first, timed, training)
-    would otherwise wait the whole time at every instance."""
+    would otherwise wait the whole time at every instance; that first phase's one task waits
+    the whole 5 s, while the other worker starts."""
 
     waited = False
 
     def __init__(self, directory, parent):
         super().__init__(gym.make("Pendulum-v1"))
         Path(directory, str(os.getpid())).touch()
-        deadline = time.monotonic() + (0 if PidRecorder.waited else 20)
+        deadline = time.monotonic() + (0 if PidRecorder.waited else 5)
         PidRecorder.waited = True
         while os.getpid() != parent and time.monotonic() < deadline:
             if len({p.name for p in Path(directory).iterdir()} - {str(parent)}) >= 2:
