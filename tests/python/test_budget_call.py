@@ -8,6 +8,8 @@ import re
 import subprocess
 import time
 
+import pytest
+
 
 def evolve(cli, out, budget):
     """5 runs of user-env on CartPole-v1 in `budget` seconds; the process and its wall time."""
@@ -37,6 +39,7 @@ def evolve(cli, out, budget):
     return done, time.monotonic() - start
 
 
+@pytest.mark.long
 def test_a_refusal_names_a_budget_that_holds(cli, tmp_path):
     refused, wall = evolve(cli, tmp_path / "short", 1)  # 5 of the smallest runs do not fit.
     assert refused.returncode == 2, refused.stdout + refused.stderr

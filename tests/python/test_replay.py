@@ -70,6 +70,7 @@ def assert_same_run(original: Path, replayed: Path) -> None:
     assert json.loads((replayed / "run.json").read_text())["replay_of"] == str(original.resolve())
 
 
+@pytest.mark.long
 def test_a_budgeted_user_env_run_replays_on_one_thread(cli, tmp_path):
     """user-env on CartPole-v1 (its twin), sized by a 6 s budget on 2 threads, then replayed by
     the command line on 1."""
@@ -107,6 +108,7 @@ def test_a_budgeted_user_env_run_replays_on_one_thread(cli, tmp_path):
     assert_same_run(tmp_path / "run", tmp_path / "again")
 
 
+@pytest.mark.long
 def test_a_run_stopped_by_its_deadline_replays_on_other_workers(tmp_path):
     """A run stepped in Python on 2 worker processes whose deadline ends it before the
     generations its budget predicted (a callback that sleeps takes the time), replayed on 1."""

@@ -151,6 +151,7 @@ def test_the_deadline_from_the_config_key_is_the_same(tmp_path, reference):
     assert run_files(run.dir) == reference
 
 
+@pytest.mark.long  # The mechanism on every Python: the tests of a task hung once.
 def test_a_task_hung_on_every_worker_stops_naming_the_step_and_resumes(tmp_path, reference):
     with pytest.raises(WorkerError) as caught:
         evolve(tmp_path, "run", once=False, arm=True, **COMMON, threads=2, task_timeout=TIMEOUT)
