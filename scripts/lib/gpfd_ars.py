@@ -27,8 +27,8 @@ def train_and_score(
 ) -> float:
     """The greedy mean return over `episodes` of ARS trained with `params` (gpfd learners' ars
     names) on the raw observation, or on the features file `features` (beside the observation
-    where `with_original`). A policy that diverged is scored as gpfd train leaves it (no
-    evaluation): a clear error, not a number."""
+    where `with_original`). A missing command line, a failed training or one that diverged (no
+    evaluation) ends the script with a message naming it, not a number."""
     with tempfile.TemporaryDirectory() as out:
         command = [gpfd_cli(), "train", task, "--learner", "ars", "--seed", str(seed)]
         if features is not None:
@@ -36,9 +36,18 @@ def train_and_score(
         for key, value in params.items():
             command += ["--param", f"{key}={value}"]
         command += ["--eval", str(episodes), "--out", out, "--force", "--quiet"]
-        subprocess.run(command, check=True, capture_output=True, text=True)
+        try:
+            subprocess.run(command, check=True, capture_output=True, text=True)
+        except FileNotFoundError:
+            raise SystemExit(
+                f"{command[0]}: gpfd's command line is not there; set GPFD_CLI or install the "
+                "package (scripts/install-python)"
+            ) from None
+        except subprocess.CalledProcessError as failed:
+            message = f"gpfd train {task} seed {seed} failed: {failed.stderr.strip()}"
+            raise SystemExit(message) from None
         weights = json.loads((Path(out) / "weights.json").read_text())
     evaluation = weights.get("greedy_evaluation")
     if evaluation is None:
-        raise RuntimeError(f"gpfd train {task} seed {seed}: no greedy evaluation (diverged?)")
+        raise SystemExit(f"gpfd train {task} seed {seed}: no greedy evaluation (diverged?)")
     return float(evaluation["mean_return"])

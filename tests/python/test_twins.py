@@ -28,6 +28,14 @@ def _same_reward(ours: float, theirs: float, what: str) -> None:
     assert (math.isnan(ours) and math.isnan(theirs)) or ours == theirs, (what, ours, theirs)
 
 
+def _same_reward_of(task: str, action: Any, ours: float, theirs: float, what: str) -> None:
+    """Bit for bit, but within 1 ulp where Gymnasium's own torque square is inexact."""
+    if _gymnasiums_torque_square_is_inexact(task, action) and math.isfinite(theirs):
+        assert abs(ours - theirs) <= math.ulp(theirs), (what, ours, theirs)
+    else:
+        _same_reward(ours, theirs, what)
+
+
 def _gymnasiums_torque_square_is_inexact(task: str, action: Any) -> bool:
     """Whether Gymnasium's Pendulum-v1 squares this action's torque other than correctly rounded:
     under NumPy 1.x a float32 torque's `u**2` goes through the float64 `np.power` ufunc, which on
@@ -82,13 +90,7 @@ def _play(task: str, seeds: range, steps: int, adversarial: bool, **make: Any) -
                 their_obs, their_reward, t2, tr2, _ = theirs.step(action)
                 what = f"{task} seed {seed} step {played} action {action!r}"
                 _same(obs, their_obs, what)
-                one_ulp = _gymnasiums_torque_square_is_inexact(task, action) and math.isfinite(
-                    their_reward
-                )
-                if one_ulp:
-                    assert abs(float(reward) - float(their_reward)) <= math.ulp(their_reward), what
-                else:
-                    _same_reward(float(reward), float(their_reward), what)
+                _same_reward_of(task, action, float(reward), float(their_reward), what)
                 assert (terminated, truncated) == (t2, tr2), what
                 played += 1
                 if terminated or truncated:
@@ -197,14 +199,11 @@ def test_big_seeds_take_numpys_words():
 
 
 def _same_rewards(task: str, actions: Any, ours: Any, theirs: Any, what: str) -> None:
-    """Bit for bit, but within 1 ulp where Gymnasium's own torque square is inexact."""
+    """Each env's reward as _same_reward_of compares one."""
     a, b = np.asarray(ours), np.asarray(theirs)
     assert a.dtype == b.dtype and a.shape == b.shape, (what, a.dtype, b.dtype, a.shape, b.shape)
     for i, (mine, gyms) in enumerate(zip(a.tolist(), b.tolist(), strict=True)):
-        if _gymnasiums_torque_square_is_inexact(task, actions[i]) and math.isfinite(gyms):
-            assert abs(mine - gyms) <= math.ulp(gyms), (f"{what} env {i}", mine, gyms)
-        else:
-            _same_reward(mine, gyms, f"{what} env {i}")
+        _same_reward_of(task, actions[i], mine, gyms, f"{what} env {i}")
 
 
 def _step_both(ours, theirs, actions, what, task):
